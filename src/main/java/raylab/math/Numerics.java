@@ -1,0 +1,45 @@
+package raylab.math;
+
+/**
+ * Named helpers for floating-point error, after pbrt: the relative error bound gamma(n) and
+ * the scale-aware offset of a ray origin off a surface. {@code docs/numerics.md} explains each.
+ */
+public final class Numerics {
+    /** Unit roundoff of double precision: 2^-53. */
+    public static final double MACHINE_EPSILON = Math.ulp(1.0) * 0.5;
+
+    private Numerics() {
+    }
+
+    /**
+     * gamma(n) = n·u / (1 − n·u): a bound on the relative error of n successive roundings
+     * (Higham), with u the unit roundoff.
+     */
+    public static double gamma(int n) {
+        return (n * MACHINE_EPSILON) / (1 - n * MACHINE_EPSILON);
+    }
+
+    /**
+     * How far a shadow ray's origin is moved off a surface at hit point x: proportional to the
+     * size of x, so it covers the rounding error of the computed hit point at every scale.
+     * It is 2^10 ulps of the largest coordinate, and never less than {@link #MIN_OFFSET}.
+     */
+    public static double originOffset(Vec3 x) {
+        return Math.max(MIN_OFFSET, x.maxAbs() * OFFSET_SCALE);
+    }
+
+    /** The relative size of the offset: 2^-42, about 2^10 units in the last place. */
+    public static final double OFFSET_SCALE = 0x1p-42;
+
+    /** Smallest offset, for hit points at the origin. */
+    public static final double MIN_OFFSET = 0x1p-60;
+
+    /**
+     * Moves x off the surface with unit normal n, to the side that direction w points into.
+     * A ray leaving the result along w cannot hit the surface it started on because of rounding.
+     */
+    public static Vec3 offsetRayOrigin(Vec3 x, Vec3 n, Vec3 w) {
+        double offset = originOffset(x);
+        return n.dot(w) >= 0 ? x.plus(n.times(offset)) : x.minus(n.times(offset));
+    }
+}
