@@ -1,0 +1,53 @@
+package raylab.cli;
+
+import java.io.IOException;
+import java.io.PrintWriter;
+import java.io.UncheckedIOException;
+
+import picocli.CommandLine;
+import picocli.CommandLine.IExecutionExceptionHandler;
+import picocli.CommandLine.ParseResult;
+import raylab.course.NotImplemented;
+import raylab.scene.SceneException;
+
+/**
+ * Turns every failure into one line on standard error and an exit status: no stack traces
+ * (set RAYLAB_DEBUG=1 to see them).
+ */
+final class Errors implements IExecutionExceptionHandler {
+    @Override
+    public int handleExecutionException(Exception ex, CommandLine cl, ParseResult parse) {
+        PrintWriter err = cl.getErr();
+        if (System.getenv("RAYLAB_DEBUG") != null) {
+            ex.printStackTrace(err);
+        }
+        Throwable t = ex;
+        while (t.getCause() != null && !(t instanceof SceneException) && !(t instanceof NotImplemented)
+                && !(t instanceof UserError)) {
+            t = t.getCause();
+        }
+        if (t instanceof SceneException || t instanceof UserError) {
+            err.println("raylab: " + t.getMessage());
+            return ((t instanceof UserError u) ? u.status : Main.BAD_INPUT);
+        }
+        if (t instanceof NotImplemented) {
+            err.println("raylab: " + t.getMessage());
+            return Main.NOT_IMPLEMENTED;
+        }
+        if (t instanceof IOException || t instanceof UncheckedIOException) {
+            err.println("raylab: " + oneLine(t.getMessage()));
+            return Main.FAILED;
+        }
+        err.println("raylab: internal error: " + t.getClass().getSimpleName() + ": " + oneLine(t.getMessage())
+                + " (RAYLAB_DEBUG=1 shows the stack trace)");
+        return Main.FAILED;
+    }
+
+    static String oneLine(String s) {
+        if (s == null) {
+            return "(no message)";
+        }
+        int nl = s.indexOf('\n');
+        return nl < 0 ? s : s.substring(0, nl);
+    }
+}

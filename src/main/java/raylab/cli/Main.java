@@ -1,0 +1,69 @@
+package raylab.cli;
+
+import java.io.PrintWriter;
+
+import picocli.CommandLine;
+import picocli.CommandLine.Command;
+
+/**
+ * The {@code raylab} command line. Exit status: 0 success, 1 failure (an image differs from its
+ * reference, a file cannot be written), 2 bad input (a scene or an option), 3 a milestone that is
+ * not implemented yet.
+ */
+@Command(name = "raylab", mixinStandardHelpOptions = true, versionProvider = Main.Version.class,
+        description = "A ray tracer for learning: render scenes, trace one pixel, check milestones.",
+        subcommands = {RenderCommand.class, CommandLine.HelpCommand.class})
+public final class Main implements Runnable {
+    public static final int OK = 0;
+    public static final int FAILED = 1;
+    public static final int BAD_INPUT = 2;
+    public static final int NOT_IMPLEMENTED = 3;
+
+    @Override
+    public void run() {
+        new CommandLine(this).usage(System.out);
+    }
+
+    public static void main(String[] args) {
+        System.exit(run(args));
+    }
+
+    /** Runs a command line and returns its exit status (never calls System.exit). */
+    public static int run(String... args) {
+        return run(new PrintWriter(System.out, true), new PrintWriter(System.err, true), args);
+    }
+
+    /** Runs a command line with the given output streams and returns its exit status. */
+    public static int run(PrintWriter out, PrintWriter err, String... args) {
+        CommandLine cl = commandLine();
+        cl.setOut(out);
+        cl.setErr(err);
+        return cl.execute(args);
+    }
+
+    /** The configured picocli command line (also used to list the subcommands in docs). */
+    public static CommandLine commandLine() {
+        CommandLine cl = new CommandLine(new Main());
+        cl.setExecutionExceptionHandler(new Errors());
+        cl.setParameterExceptionHandler((ex, args) -> {
+            PrintWriter err = ex.getCommandLine().getErr();
+            err.println("raylab: " + ex.getMessage() + " (see: " + ex.getCommandLine().getCommandSpec()
+                    .qualifiedName() + " --help)");
+            return BAD_INPUT;
+        });
+        for (String extra : OptionalCommands.NAMES) {
+            OptionalCommands.add(cl, extra);
+        }
+        return cl;
+    }
+
+    /** The version from the jar's manifest, or "development". */
+    static final class Version implements CommandLine.IVersionProvider {
+        @Override
+        public String[] getVersion() {
+            String v = Main.class.getPackage().getImplementationVersion();
+            return new String[] {"raylab " + (v == null ? "development" : v),
+                "Java " + System.getProperty("java.version") + " (" + System.getProperty("java.vm.name") + ")"};
+        }
+    }
+}

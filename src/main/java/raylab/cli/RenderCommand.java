@@ -1,0 +1,154 @@
+package raylab.cli;
+
+import java.awt.image.BufferedImage;
+import java.io.PrintWriter;
+import java.nio.file.Path;
+import java.util.concurrent.Callable;
+
+import picocli.CommandLine.Command;
+import picocli.CommandLine.Option;
+import picocli.CommandLine.Parameters;
+import picocli.CommandLine.Spec;
+import picocli.CommandLine.Model.CommandSpec;
+import raylab.render.Image;
+import raylab.render.ImageCompare;
+import raylab.render.Mode;
+import raylab.render.PngFiles;
+import raylab.render.RenderPlan;
+import raylab.render.RenderStats;
+import raylab.render.Renderer;
+import raylab.scene.Scene;
+import raylab.scene.SceneLoader;
+
+/** {@code raylab render SCENE.json}: renders a scene, prints the plan and the counters. */
+@Command(name = "render", mixinStandardHelpOptions = true,
+        description = {"Render a scene to a PNG image.",
+            "Prints the plan (which effects the scene needs) and counters (rays, tests, time)."},
+        exitCodeListHeading = "%nExit status:%n",
+        exitCodeList = {"0:rendered (and matched the reference, with --compare)",
+            "1:the image differs from the reference, or a file could not be written",
+            "2:bad scene or option", "3:the scene needs a milestone that is not implemented yet"})
+public final class RenderCommand implements Callable<Integer> {
+    @Spec
+    CommandSpec spec;
+
+    @Parameters(index = "0", paramLabel = "SCENE.json", description = "The scene file.")
+    Path scenePath;
+
+    @Option(names = {"-o", "--output"}, paramLabel = "OUT.png",
+            description = "Where to write the image (default: out/<scene name>.png).")
+    Path output;
+
+    @Option(names = "--threads", paramLabel = "N", description = "Render threads (default: all cores, ${DEFAULT-VALUE}).")
+    int threads = Runtime.getRuntime().availableProcessors();
+
+    @Option(names = "--spp", paramLabel = "N", description = "Samples per pixel, overriding the scene's.")
+    Integer spp;
+
+    @Option(names = "--mode", paramLabel = "MODE",
+            description = "What to draw: ${COMPLETION-CANDIDATES} (default: ${DEFAULT-VALUE}).")
+    Mode mode = Mode.FULL;
+
+    @Option(names = "--compare", paramLabel = "REF.png",
+            description = "Compare with a reference image: print the error and write a diff heatmap.")
+    Path reference;
+
+    @Option(names = "--diff", paramLabel = "DIFF.png",
+            description = "Where to write the diff heatmap (default: OUT.diff.png).")
+    Path diffPath;
+
+    @Option(names = "--tolerance", paramLabel = "FRACTION",
+            description = "With --compare: the fraction of pixels allowed to differ (default: ${DEFAULT-VALUE}).")
+    double tolerance = 0.001;
+
+    @Option(names = {"-q", "--quiet"}, description = "Print only errors and the comparison result.")
+    boolean quiet;
+
+    @Override
+    public Integer call() throws Exception {
+        PrintWriter out = spec.commandLine().getOut();
+        if (threads < 1) {
+            throw UserError.badInput("--threads must be at least 1, got " + threads);
+        }
+        if (spp != null && (spp < 1 || spp > 4096)) {
+            throw UserError.badInput("--spp must be between 1 and 4096, got " + spp);
+        }
+        if (!(tolerance >= 0 && tolerance <= 1)) {
+            throw UserError.badInput("--tolerance must be a fraction between 0 and 1, got " + tolerance);
+        }
+        BufferedImage ref = null;
+        if (reference != null) {
+            ref = PngFiles.read(reference); // fail before rendering if the reference is unusable
+        }
+        long t0 = System.nanoTime();
+        Scene scene = SceneLoader.load(scenePath);
+        if (spp != null) {
+            scene = scene.withSamplesPerPixel(spp);
+        }
+        long loadNanos = System.nanoTime() - t0;
+        Path target = output != null ? output : defaultOutput(scenePath, mode);
+
+        RenderPlan plan = new RenderPlan(scene);
+        Renderer renderer = new Renderer(scene, plan, mode);
+        if (!quiet) {
+            out.printf("raylab render %s -> %s (%dx%d, %s, %d thread%s)%n", scenePath, target,
+                    scene.width, scene.height, mode.name().toLowerCase(), threads, threads == 1 ? "" : "s");
+            out.println("plan:");
+            plan.describe().forEach(out::println);
+            out.flush();
+        }
+        Image image;
+        try (Progress progress = Progress.start(scene, Renderer.TILE)) {
+            image = renderer.render(threads, progress::tileDone);
+        }
+        long t1 = System.nanoTime();
+        BufferedImage picture = image.toBufferedImage();
+        PngFiles.write(picture, target);
+        long writeNanos = System.nanoTime() - t1;
+        if (!quiet) {
+            printCounters(out, renderer, loadNanos, writeNanos);
+        }
+        if (ref == null) {
+            return Main.OK;
+        }
+        ImageCompare.Result result = ImageCompare.compare(picture, ref);
+        Path diff = diffPath != null ? diffPath : sibling(target, ".diff.png");
+        PngFiles.write(result.diff(), diff);
+        boolean match = result.matches(tolerance);
+        out.printf("compare with %s: %s: %s%n  diff heatmap: %s%n", reference, match ? "MATCH" : "DIFFERS",
+                result.summary(), diff);
+        return match ? Main.OK : Main.FAILED;
+    }
+
+    private static void printCounters(PrintWriter out, Renderer r, long loadNanos, long writeNanos) {
+        RenderStats s = r.stats();
+        double seconds = r.renderNanos() / 1e9;
+        out.println("counters:");
+        out.printf("  %-22s %,d%n", "eye rays", s.eyeRays);
+        out.printf("  %-22s %,d (%,d blocked)%n", "shadow rays", s.shadowRays, s.shadowRaysBlocked);
+        out.printf("  %-22s %,d%n", "intersection tests", s.intersectionTests);
+        out.printf("  %-22s %,d%n", "specular evaluations", s.specularEvaluations);
+        out.printf("  %-22s %,.0f%n", "rays per second", (s.eyeRays + s.shadowRays) / Math.max(seconds, 1e-9));
+        if (s.nonFinitePixels > 0) {
+            out.printf("  %-22s %,d (drawn magenta)%n", "NaN/infinite pixels", s.nonFinitePixels);
+        }
+        out.printf("time: load %s, build %s, render %s, write %s%n", ms(loadNanos), ms(r.buildNanos()),
+                ms(r.renderNanos()), ms(writeNanos));
+    }
+
+    static String ms(long nanos) {
+        return String.format("%.1f ms", nanos / 1e6);
+    }
+
+    /** out/NAME.png, or out/NAME-MODE.png for a debug mode. */
+    static Path defaultOutput(Path scene, Mode mode) {
+        String name = scene.getFileName().toString().replaceFirst("\\.json$", "");
+        return Path.of("out", mode == Mode.FULL ? name + ".png" : name + "-" + mode.name().toLowerCase() + ".png");
+    }
+
+    static Path sibling(Path file, String suffix) {
+        String name = file.getFileName().toString().replaceFirst("\\.png$", "");
+        Path parent = file.toAbsolutePath().getParent();
+        return parent.resolve(name + suffix);
+    }
+}

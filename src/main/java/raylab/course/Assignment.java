@@ -1,0 +1,91 @@
+package raylab.course;
+
+import java.nio.file.Path;
+import java.util.List;
+
+import com.fasterxml.jackson.annotation.JsonIgnoreProperties;
+import com.fasterxml.jackson.annotation.JsonProperty;
+
+/**
+ * One milestone, as its {@code assignments/NN-id/assignment.json} describes it (format in
+ * docs/assignment-format.md).
+ *
+ * @param id       short name, also the JUnit tag of its tests and the solution-region id
+ * @param order    position in the course (the NN of the folder)
+ * @param title    title for people
+ * @param points   total points of the milestone
+ * @param requires milestones whose code this one's scenes also need
+ * @param files    the files the student edits, with the methods to write in each
+ * @param tests    the visible and hidden tests and their points
+ * @param scenes   graded scenes
+ * @param cases    data-driven unit cases (JSON files relative to the assignment folder)
+ * @param optional whether the milestone is an optional extra
+ * @param folder   the assignment folder (set by the loader, not in the file)
+ */
+@JsonIgnoreProperties(value = {"$schema"}, allowSetters = true)
+public record Assignment(
+        @JsonProperty(required = true) String id,
+        @JsonProperty(required = true) int order,
+        @JsonProperty(required = true) String title,
+        @JsonProperty(required = true) int points,
+        List<String> requires,
+        @JsonProperty(required = true) List<StudentFile> files,
+        @JsonProperty(required = true) Tests tests,
+        List<GradedScene> scenes,
+        List<String> cases,
+        boolean optional,
+        Path folder) {
+
+    public Assignment {
+        requires = requires == null ? List.of() : List.copyOf(requires);
+        scenes = scenes == null ? List.of() : List.copyOf(scenes);
+        cases = cases == null ? List.of() : List.copyOf(cases);
+        files = List.copyOf(files);
+    }
+
+    /** A copy that knows its folder. */
+    public Assignment inFolder(Path f) {
+        return new Assignment(id, order, title, points, requires, files, tests, scenes, cases, optional, f);
+    }
+
+    /** A file the student edits and the methods to write in it. */
+    public record StudentFile(@JsonProperty(required = true) String path,
+            @JsonProperty(required = true) List<String> methods) {
+    }
+
+    /**
+     * The milestone's tests.
+     *
+     * @param tag              JUnit tag of the visible and hidden tests
+     * @param visible          visible test files (shipped to students)
+     * @param hidden           hidden test files, under grader/ (never shipped)
+     * @param visiblePoints    points shared by the visible tests
+     * @param hiddenPoints     points shared by the hidden tests
+     * @param hiddenVisibility Gradescope visibility of hidden tests: hidden, after_due_date, ...
+     */
+    public record Tests(@JsonProperty(required = true) String tag,
+            @JsonProperty(required = true) List<String> visible,
+            List<String> hidden,
+            int visiblePoints,
+            int hiddenPoints,
+            String hiddenVisibility) {
+        public Tests {
+            hidden = hidden == null ? List.of() : List.copyOf(hidden);
+            hiddenVisibility = hiddenVisibility == null ? "after_due_date" : hiddenVisibility;
+        }
+    }
+
+    /**
+     * A scene graded by comparing its render with the reference image.
+     *
+     * @param scene     scene file, relative to the project root
+     * @param reference reference PNG, relative to the project root
+     * @param points    points for a match
+     * @param tolerance fraction of pixels allowed to differ by more than 2/255
+     */
+    public record GradedScene(@JsonProperty(required = true) String scene,
+            @JsonProperty(required = true) String reference,
+            int points,
+            double tolerance) {
+    }
+}

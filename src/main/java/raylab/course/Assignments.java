@@ -1,0 +1,107 @@
+package raylab.course;
+
+import java.io.IOException;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.util.ArrayList;
+import java.util.Comparator;
+import java.util.List;
+import java.util.Optional;
+import java.util.stream.Stream;
+
+import com.fasterxml.jackson.core.JsonProcessingException;
+import com.fasterxml.jackson.databind.DeserializationFeature;
+import com.fasterxml.jackson.databind.ObjectMapper;
+
+/** Reads the milestones under {@code assignments/}, in course order. */
+public final class Assignments {
+    private static final ObjectMapper JSON = new ObjectMapper()
+            .enable(DeserializationFeature.FAIL_ON_UNKNOWN_PROPERTIES)
+            .enable(DeserializationFeature.FAIL_ON_NULL_FOR_PRIMITIVES);
+
+    private final Path root;
+    private final List<Assignment> all;
+
+    private Assignments(Path root, List<Assignment> all) {
+        this.root = root;
+        this.all = List.copyOf(all);
+    }
+
+    /**
+     * Loads every {@code assignments/*}{@code /assignment.json} under the project root.
+     *
+     * @throws IOException with a one-line message naming the file for a malformed description
+     */
+    public static Assignments load(Path projectRoot) throws IOException {
+        Path dir = projectRoot.resolve("assignments");
+        if (!Files.isDirectory(dir)) {
+            throw new IOException(dir + ": no assignments folder (run from the project root)");
+        }
+        List<Assignment> out = new ArrayList<>();
+        try (Stream<Path> folders = Files.list(dir)) {
+            for (Path f : folders.sorted().toList()) {
+                Path file = f.resolve("assignment.json");
+                if (!Files.isRegularFile(file)) {
+                    continue;
+                }
+                try {
+                    Assignment a = JSON.readValue(file.toFile(), Assignment.class);
+                    out.add(a.inFolder(projectRoot.relativize(f)));
+                } catch (JsonProcessingException e) {
+                    String where = e.getLocation() == null ? "" : ":" + e.getLocation().getLineNr()
+                            + ":" + e.getLocation().getColumnNr();
+                    throw new IOException(file + where + ": " + e.getOriginalMessage().split("\n")[0]);
+                }
+            }
+        }
+        out.sort(Comparator.comparingInt(Assignment::order));
+        checkConsistent(out);
+        return new Assignments(projectRoot, out);
+    }
+
+    private static void checkConsistent(List<Assignment> list) throws IOException {
+        List<String> ids = list.stream().map(Assignment::id).toList();
+        for (Assignment a : list) {
+            if (ids.indexOf(a.id()) != ids.lastIndexOf(a.id())) {
+                throw new IOException("two assignments have the id '" + a.id() + "'");
+            }
+            int sum = a.tests().visiblePoints() + a.tests().hiddenPoints()
+                    + a.scenes().stream().mapToInt(Assignment.GradedScene::points).sum();
+            if (sum != a.points()) {
+                throw new IOException(a.folder() + "/assignment.json: points is " + a.points()
+                        + " but visiblePoints + hiddenPoints + scene points add up to " + sum);
+            }
+            for (String r : a.requires()) {
+                if (!ids.contains(r)) {
+                    throw new IOException(a.folder() + "/assignment.json: requires unknown milestone '" + r + "'");
+                }
+            }
+        }
+    }
+
+    /** The project root the assignments were read from. */
+    public Path root() {
+        return root;
+    }
+
+    /** All milestones in course order. */
+    public List<Assignment> all() {
+        return all;
+    }
+
+    /** The milestone with this id. */
+    public Optional<Assignment> byId(String id) {
+        return all.stream().filter(a -> a.id().equals(id)).findFirst();
+    }
+
+    /** Milestone ids in course order. */
+    public List<String> ids() {
+        return all.stream().map(Assignment::id).toList();
+    }
+
+    /** The milestone a student-edited file belongs to, if any. */
+    public Optional<Assignment> ownerOf(String relativePath) {
+        String p = relativePath.replace('\\', '/');
+        return all.stream().filter(a -> a.files().stream().anyMatch(f -> f.path().equals(p))).findFirst();
+    }
+}

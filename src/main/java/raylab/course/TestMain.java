@@ -1,0 +1,250 @@
+package raylab.course;
+
+import java.io.BufferedReader;
+import java.io.ByteArrayOutputStream;
+import java.io.FileDescriptor;
+import java.io.FileOutputStream;
+import java.io.InputStream;
+import java.io.InputStreamReader;
+import java.io.OutputStream;
+import java.io.PrintStream;
+import java.nio.charset.StandardCharsets;
+import java.nio.file.Path;
+import java.util.ArrayList;
+import java.util.HashSet;
+import java.util.List;
+import java.util.Map;
+import java.util.Set;
+import java.util.concurrent.ConcurrentHashMap;
+
+import org.junit.platform.engine.TestExecutionResult;
+import org.junit.platform.engine.discovery.DiscoverySelectors;
+import org.junit.platform.engine.support.descriptor.MethodSource;
+import org.junit.platform.launcher.Launcher;
+import org.junit.platform.launcher.LauncherDiscoveryRequest;
+import org.junit.platform.launcher.TagFilter;
+import org.junit.platform.launcher.TestExecutionListener;
+import org.junit.platform.launcher.TestIdentifier;
+import org.junit.platform.launcher.TestPlan;
+import org.junit.platform.launcher.core.LauncherDiscoveryRequestBuilder;
+import org.junit.platform.launcher.core.LauncherFactory;
+
+import com.fasterxml.jackson.databind.ObjectMapper;
+
+/**
+ * The test runner inside a child JVM started by {@link TestLauncher}. Not for people to run.
+ *
+ * <p>It reads a one-line token from standard input, then runs the selected JUnit tests and
+ * reports each on the original standard output as {@code TOKEN START id},
+ * {@code TOKEN RESULT json} and finally {@code TOKEN END}. What the tests print goes to a capped
+ * buffer attached to their result, so output cannot forge a report without the token.
+ * Arguments: {@code --test-classes DIR} (scanned for tests), {@code --tag T} (repeatable),
+ * {@code --class NAME} (repeatable), {@code --timeout S} (per test), {@code --output-cap BYTES},
+ * {@code --list} (report the discovered tests without running them).
+ */
+public final class TestMain {
+    private TestMain() {
+    }
+
+    public static void main(String[] args) throws Exception {
+        BufferedReader in = new BufferedReader(new InputStreamReader(System.in, StandardCharsets.UTF_8));
+        String token = in.readLine();
+        if (token == null || token.isBlank()) {
+            System.err.println("TestMain: expected a token on standard input");
+            System.exit(2);
+        }
+        System.setIn(InputStream.nullInputStream());
+        PrintStream channel = new PrintStream(new FileOutputStream(FileDescriptor.out), true, StandardCharsets.UTF_8);
+
+        Path testClasses = null;
+        List<String> tags = new ArrayList<>();
+        List<String> classes = new ArrayList<>();
+        int timeout = 10;
+        int cap = 16 * 1024;
+        boolean list = false;
+        for (int i = 0; i < args.length; i++) {
+            switch (args[i]) {
+                case "--test-classes" -> testClasses = Path.of(args[++i]);
+                case "--tag" -> tags.add(args[++i]);
+                case "--class" -> classes.add(args[++i]);
+                case "--timeout" -> timeout = Integer.parseInt(args[++i]);
+                case "--output-cap" -> cap = Integer.parseInt(args[++i]);
+                case "--list" -> list = true;
+                default -> throw new IllegalArgumentException("unknown argument " + args[i]);
+            }
+        }
+        CappedBuffer captured = new CappedBuffer(cap);
+        PrintStream capture = new PrintStream(captured, true, StandardCharsets.UTF_8);
+        System.setOut(capture);
+        System.setErr(capture);
+
+        LauncherDiscoveryRequestBuilder request = LauncherDiscoveryRequestBuilder.request()
+                .configurationParameter("junit.jupiter.execution.timeout.default", timeout + " s")
+                .configurationParameter("junit.jupiter.execution.timeout.mode", "enabled")
+                .configurationParameter("junit.jupiter.execution.timeout.thread.mode.default", "SEPARATE_THREAD")
+                .configurationParameter("junit.jupiter.extensions.autodetection.enabled", "false");
+        if (!classes.isEmpty()) {
+            for (String c : classes) {
+                request.selectors(DiscoverySelectors.selectClass(c));
+            }
+        } else if (testClasses != null) {
+            request.selectors(DiscoverySelectors.selectClasspathRoots(Set.of(testClasses)));
+        }
+        if (!tags.isEmpty()) {
+            request.filters(TagFilter.includeTags(tags));
+        }
+        LauncherDiscoveryRequest req = request.build();
+        Launcher launcher = LauncherFactory.create();
+        ObjectMapper json = new ObjectMapper();
+        if (list) {
+            TestPlan plan = launcher.discover(req);
+            for (TestIdentifier root : plan.getRoots()) {
+                for (TestIdentifier t : plan.getDescendants(root)) {
+                    if (t.isTest()) {
+                        channel.println(token + " RESULT " + json.writeValueAsString(
+                                toResult(t, TestResult.Status.MISSING, "", "", 0)));
+                    }
+                }
+            }
+            channel.println(token + " END");
+            channel.flush();
+            System.exit(0);
+        }
+        Map<String, Long> started = new ConcurrentHashMap<>();
+        Set<String> reported = new HashSet<>();
+        launcher.execute(req, new TestExecutionListener() {
+            @Override
+            public void executionStarted(TestIdentifier t) {
+                if (t.isTest()) {
+                    captured.reset();
+                    started.put(t.getUniqueId(), System.nanoTime());
+                    channel.println(token + " START " + t.getUniqueId());
+                }
+            }
+
+            @Override
+            public void executionSkipped(TestIdentifier t, String reason) {
+                if (t.isTest()) {
+                    send(t, TestResult.Status.ABORTED, "skipped: " + reason, 0);
+                }
+            }
+
+            @Override
+            public void executionFinished(TestIdentifier t, TestExecutionResult r) {
+                if (!t.isTest()) {
+                    if (r.getStatus() != TestExecutionResult.Status.SUCCESSFUL) {
+                        // A class-level failure (for example an exception in a static initializer):
+                        // the tests below it are reported by the launcher as not run.
+                        channel.println(token + " CONTAINER " + t.getUniqueId() + " " + firstLines(r));
+                    }
+                    return;
+                }
+                long t0 = started.getOrDefault(t.getUniqueId(), System.nanoTime());
+                long ms = (System.nanoTime() - t0) / 1_000_000;
+                TestResult.Status s = switch (r.getStatus()) {
+                    case SUCCESSFUL -> TestResult.Status.PASSED;
+                    case ABORTED -> TestResult.Status.ABORTED;
+                    case FAILED -> isTimeout(r) ? TestResult.Status.TIMED_OUT : TestResult.Status.FAILED;
+                };
+                send(t, s, s == TestResult.Status.PASSED ? "" : firstLines(r), ms);
+            }
+
+            private void send(TestIdentifier t, TestResult.Status s, String message, long ms) {
+                if (!reported.add(t.getUniqueId())) {
+                    return;
+                }
+                try {
+                    channel.println(token + " RESULT " + json.writeValueAsString(
+                            toResult(t, s, message, captured.text(), ms)));
+                } catch (Exception e) {
+                    channel.println(token + " ERROR " + e);
+                }
+            }
+        });
+        channel.println(token + " END");
+        channel.flush();
+        // Stray threads started by the code under test must not keep this JVM alive.
+        Runtime.getRuntime().halt(0);
+    }
+
+    static TestResult toResult(TestIdentifier t, TestResult.Status s, String message, String output, long ms) {
+        String cls = "";
+        String method = t.getDisplayName();
+        if (t.getSource().orElse(null) instanceof MethodSource m) {
+            cls = m.getClassName();
+            method = m.getMethodName();
+        } else {
+            String id = t.getUniqueId();
+            int k = id.indexOf("[class:");
+            if (k >= 0) {
+                cls = id.substring(k + 7, id.indexOf(']', k));
+            }
+        }
+        return new TestResult(t.getUniqueId(), cls, method, t.getDisplayName(), s, message, output, ms);
+    }
+
+    static boolean isTimeout(TestExecutionResult r) {
+        return r.getThrowable().map(e -> e instanceof java.util.concurrent.TimeoutException
+                || e.getClass().getName().endsWith("TimeoutException")).orElse(false);
+    }
+
+    static String firstLines(TestExecutionResult r) {
+        return r.getThrowable().map(e -> {
+            String m = e.getMessage();
+            String text = (m == null || m.isBlank()) ? e.getClass().getName() : m;
+            if (e instanceof StackOverflowError) {
+                text = "StackOverflowError (endless recursion?)";
+            } else if (e instanceof OutOfMemoryError) {
+                text = "OutOfMemoryError: the test used more memory than allowed";
+            } else if (!(e instanceof AssertionError) && !(e instanceof NotImplemented)) {
+                text = e.getClass().getSimpleName() + ": " + text;
+                StackTraceElement[] st = e.getStackTrace();
+                for (StackTraceElement el : st) {
+                    if (el.getClassName().startsWith("raylab.")) {
+                        text += " (at " + el.getClassName() + "." + el.getMethodName() + ":" + el.getLineNumber() + ")";
+                        break;
+                    }
+                }
+            }
+            return text.length() > 2000 ? text.substring(0, 2000) + " ..." : text;
+        }).orElse("");
+    }
+
+    /** Keeps the first {@code cap} bytes written, and counts the rest. */
+    static final class CappedBuffer extends OutputStream {
+        private final int cap;
+        private final ByteArrayOutputStream bytes = new ByteArrayOutputStream();
+        private long dropped;
+
+        CappedBuffer(int cap) {
+            this.cap = cap;
+        }
+
+        @Override
+        public synchronized void write(int b) {
+            if (bytes.size() < cap) {
+                bytes.write(b);
+            } else {
+                dropped++;
+            }
+        }
+
+        @Override
+        public synchronized void write(byte[] b, int off, int len) {
+            int room = Math.max(0, cap - bytes.size());
+            int n = Math.min(room, len);
+            bytes.write(b, off, n);
+            dropped += len - n;
+        }
+
+        synchronized void reset() {
+            bytes.reset();
+            dropped = 0;
+        }
+
+        synchronized String text() {
+            String s = bytes.toString(StandardCharsets.UTF_8);
+            return dropped > 0 ? s + "\n[... " + dropped + " more bytes of output dropped]" : s;
+        }
+    }
+}
