@@ -1,5 +1,6 @@
 package raylab.course;
 
+import java.io.File;
 import java.io.IOException;
 import java.nio.charset.StandardCharsets;
 import java.nio.file.Files;
@@ -71,7 +72,7 @@ public final class MilestoneBuild {
             int heapMegabytes, Path workDir) throws IOException {
         String java = Path.of(System.getProperty("java.home"), "bin", "java").toString();
         List<String> cmd = List.of(java, "-Xmx" + heapMegabytes + "m", "-Djava.awt.headless=true", "-cp",
-                String.join(java.io.File.pathSeparator, classPath.stream().map(Path::toString).toList()),
+                String.join(File.pathSeparator, classPath.stream().map(Path::toString).toList()),
                 "raylab.cli.Main", "render", scene.toAbsolutePath().toString(), "-o", out.toAbsolutePath().toString(),
                 "--quiet", "--threads", "2");
         Path err = Files.createTempFile(workDir, "render", ".err");
