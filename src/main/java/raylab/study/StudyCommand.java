@@ -1,0 +1,94 @@
+package raylab.study;
+
+import java.io.PrintWriter;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.time.Instant;
+import java.util.ArrayList;
+import java.util.List;
+import java.util.concurrent.Callable;
+
+import picocli.CommandLine.Command;
+import picocli.CommandLine.Model.CommandSpec;
+import picocli.CommandLine.Option;
+import picocli.CommandLine.Spec;
+import raylab.bench.MachineInfo;
+import raylab.cli.UserError;
+
+/**
+ * {@code raylab study --out DIR}: measured experiments on what accuracy costs in time, written as
+ * DIR/report.md with PNG plots, stamped with machine, JVM and date. Instructor only.
+ */
+@Command(name = "study", mixinStandardHelpOptions = true,
+        description = {"Measure what accuracy costs in time: sampling, sphere and triangle methods,",
+            "shadow-ray offsets, BVH against a linear group, box slabs. Writes DIR/report.md and",
+            "PNG plots, conclusions first, stamped with machine, JVM and date."})
+public final class StudyCommand implements Callable<Integer> {
+    @Spec
+    CommandSpec spec;
+
+    @Option(names = "--out", required = true, paramLabel = "DIR", description = "Directory for report.md and the plots.")
+    Path out;
+
+    @Option(names = "--quick", description = "A reduced run (under 2 minutes), for CI.")
+    boolean quick;
+
+    @Option(names = "--only", paramLabel = "NAME", split = ",",
+            description = "Run only these experiments: sampling, sphere, triangle, shadows, bvh, box.")
+    List<String> only;
+
+    /** Every experiment, in report order. */
+    static List<Experiment> experiments() {
+        return List.of(new SamplingExperiment(), new SphereExperiment(), new TriangleExperiment(),
+                new ShadowExperiment(), new AccelerationExperiment(), new BoxExperiment());
+    }
+
+    @Override
+    public Integer call() throws Exception {
+        System.setProperty("java.awt.headless", "true");
+        List<Experiment> chosen = new ArrayList<>();
+        List<String> names = new ArrayList<>();
+        for (Experiment e : experiments()) {
+            names.add(e.name());
+            if (only == null || only.contains(e.name())) {
+                chosen.add(e);
+            }
+        }
+        if (only != null) {
+            for (String n : only) {
+                if (!names.contains(n)) {
+                    throw UserError.badInput("--only: no experiment named '" + n + "' (choose from "
+                            + String.join(", ", names) + ")");
+                }
+            }
+        }
+        if (Files.exists(out) && !Files.isDirectory(out)) {
+            throw UserError.badInput("--out: " + out + " exists and is not a directory");
+        }
+        Files.createDirectories(out);
+        PrintWriter console = spec.commandLine().getOut();
+        long t0 = System.nanoTime();
+        Report report = new Report();
+        Study study = new Study(out, quick, report);
+        for (Experiment e : chosen) {
+            long e0 = System.nanoTime();
+            study.log(e.title() + " ...");
+            e.run(study);
+            study.log(String.format("%s done in %.1f s", e.name(), (System.nanoTime() - e0) / 1e9));
+        }
+        double wall = (System.nanoTime() - t0) / 1e9;
+        MachineInfo machine = MachineInfo.current();
+        List<String> header = List.of(
+                "**Machine:** " + machine.oneLine(),
+                "**Run:** `raylab study" + (quick ? " --quick" : "") + (only == null ? "" : " --only " + String.join(",", only))
+                        + "`, " + String.format("%.0f s", wall) + " wall time, finished " + Instant.now().toString().replaceAll("\\.\\d+Z$", "Z"),
+                "**Timing:** in-process, " + study.timing.describe() + " (per-intersection figures);"
+                        + " renders and builds: warm-up runs, then timed runs, median and min–max."
+                        + " Error bars in the plots span the fastest to the slowest run. JMH figures for the same"
+                        + " loops are in docs/benchmarks.md of the repository; JMH inside the study would take too long.",
+                "**Threads:** 1 for every timing (the figures are per core).");
+        Report.writeAtomically(out.resolve("report.md"), report.markdown("What accuracy costs in time", header));
+        console.printf("study: wrote %s (%d plots) in %.0f s%n", out.resolve("report.md"), report.plots().size(), wall);
+        return 0;
+    }
+}
