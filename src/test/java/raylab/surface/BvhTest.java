@@ -360,4 +360,54 @@ class BvhTest {
         }
         assertTrue(hits > 100, "seed " + seed + ": too few hits (" + hits + ")");
     }
+
+    /** Delegates to a primitive and counts the tests of the current ray; stops a runaway traversal. */
+    static final class Counted extends Surface {
+        final Surface inner;
+        final int[] calls;
+        final int limit;
+
+        Counted(Surface inner, int[] calls, int limit) {
+            super(inner.material(), inner.name());
+            this.inner = inner;
+            this.calls = calls;
+            this.limit = limit;
+        }
+
+        @Override
+        public boolean intersect(IntersectionRecord rec, Ray ray) {
+            if (++calls[0] > limit) {
+                throw new AssertionError("more than " + limit + " primitive tests for one ray: the traversal"
+                        + " revisits nodes (a broken child link?), ray " + ray);
+            }
+            return inner.intersect(rec, ray);
+        }
+
+        @Override
+        public BoundingBox boundingBox() {
+            return inner.boundingBox();
+        }
+    }
+
+    /** Each primitive sits in one leaf, so one ray tests it at most once: also on trees of many nodes. */
+    @ParameterizedTest(name = "seed {0}")
+    @ValueSource(longs = {71, 72})
+    void everyPrimitiveIsTestedAtMostOncePerRay(long seed) {
+        int n = 1500; // far more nodes than the initial node capacity
+        int[] calls = new int[1];
+        List<Surface> scene = new ArrayList<>();
+        for (Surface s : randomScene(seed, n)) {
+            scene.add(new Counted(s, calls, n));
+        }
+        Bvh bvh = new Bvh(scene, "bvh");
+        assertTrue(bvh.nodeCount() > 64, "seed " + seed + ": the tree has " + bvh.nodeCount() + " nodes");
+        IntersectionRecord rec = new IntersectionRecord();
+        for (Ray ray : randomRays(seed, scene, 1000)) {
+            calls[0] = 0;
+            rec.reset();
+            bvh.intersect(rec, ray);
+            calls[0] = 0;
+            bvh.intersectsAny(ray, rec);
+        }
+    }
 }
