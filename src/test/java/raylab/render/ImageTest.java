@@ -4,6 +4,7 @@ import static org.junit.jupiter.api.Assertions.assertArrayEquals;
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertThrows;
 import static org.junit.jupiter.api.Assertions.assertTrue;
+import static org.junit.jupiter.api.Assumptions.assumeTrue;
 
 import java.awt.Rectangle;
 import java.awt.image.BufferedImage;
@@ -194,5 +195,16 @@ class ImageTest {
         Files.writeString(text, "not a picture");
         IOException bad = assertThrows(IOException.class, () -> PngFiles.read(text));
         assertTrue(bad.getMessage().contains("text.png"), "message names the file: " + bad.getMessage());
+    }
+
+    @Test
+    void writtenPictureGetsTheUsualFilePermissions() throws IOException {
+        assumeTrue(dir.getFileSystem().supportedFileAttributeViews().contains("posix"), "POSIX file system");
+        Path png = dir.resolve("shared.png");
+        PngFiles.write(gradient(4, 4).toBufferedImage(), png);
+        Path plain = dir.resolve("plain.txt");
+        Files.writeString(plain, "x");
+        assertEquals(Files.getPosixFilePermissions(plain), Files.getPosixFilePermissions(png),
+                "the picture must have the permissions of any new file (umask), not a temp file's owner-only ones");
     }
 }
