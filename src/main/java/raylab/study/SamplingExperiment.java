@@ -85,7 +85,7 @@ final class SamplingExperiment implements Experiment {
             for (int s = 0; s < 2; s++) {
                 Scene scene = base.withSampler(samplers[s]).withSamplesPerPixel(spps[i]);
                 Image[] last = new Image[1];
-                int runs = study.quick ? 2 : spps[i] >= 144 ? 3 : 5;
+                int runs = study.quick ? 2 : 5;
                 time[s][i] = Timing.seconds(study.quick ? 0 : 1, runs, () -> last[0] = new Renderer(scene).render(1, null));
                 err[s][i] = rmse(last[0], reference);
             }
@@ -135,7 +135,7 @@ final class SamplingExperiment implements Experiment {
                 + " shadow on a floor), rendered with 1 to %d samples per pixel, each sampler. Error: RMSE over all"
                 + " pixels and channels, in linear radiance, against a %d-sample stratified reference of the same"
                 + " region. Time: whole render, 1 thread (%s).", width, height, spps[last], referenceSpp,
-                "median of 2–5 runs after a warm-up render; bars: fastest to slowest run"));
+                study.quick ? "median of 2 runs; bars: fastest to slowest run" : "median of 5 runs after a warm-up render; bars: fastest to slowest run"));
         r.plot("sampling-error.png", "RMSE against samples per pixel, log-log");
         r.plot("sampling-time.png", "render time against samples per pixel");
         r.plot("sampling-error-vs-time.png", "RMSE against render time");
@@ -147,12 +147,13 @@ final class SamplingExperiment implements Experiment {
         }
         r.table(rows);
         r.paragraph(String.format("Fitted slopes of log RMSE against log spp (from 4 spp on): random %.2f (theory −0.5),"
-                + " stratified %.2f (theory −0.75 for images whose error comes from edges). Both samplers cost the"
-                + " same per sample: the time columns differ only by noise. The reference has error of its own (about"
-                + " that of the %d-spp stratified curve extended), so the last points flatten slightly.",
-                slopeRandom, slopeStrat, referenceSpp));
+                + " stratified %.2f (theory −0.75 for images whose error comes from edges). At 1 spp both samplers"
+                + " trace the pixel centre, so their errors agree. Both do the same work per sample (one eye ray and"
+                + " two random numbers); at %d spp stratified took %.2f× random's time. The reference has error of"
+                + " its own (about that of the stratified curve extended to %d spp), which the last points include.",
+                slopeRandom, slopeStrat, spps[last], time[1][last].median() / time[0][last].median(), referenceSpp));
 
-        r.conclude(String.format("**Sampling: use stratified.** It costs the same per sample as random and its"
+        r.conclude(String.format("**Sampling: use stratified.** It does the same work per sample as random and its"
                 + " error falls faster (slope %.2f against %.2f on log-log axes): it reaches random's %d-spp"
                 + " error with about %s spp. Time grows linearly with spp (%.3f s at 1 spp, %.3f s at %d spp here)."
                 + " The error drops below one 8-bit step (1/255) at about %s spp stratified, %s spp random: beyond"

@@ -245,7 +245,8 @@ final class ShadowExperiment implements Experiment {
             double acneFrom = firstScale(x, acne[m], true);
             double leaksUpTo = firstScale(x, leaks[m], false);
             fixed.append(METHODS[m]).append(": ")
-                    .append(Double.isNaN(acneFrom) ? "no acne" : "acne from scale " + formatScale(acneFrom) + " up")
+                    .append(!Double.isNaN(acneFrom) ? "acne from scale " + formatScale(acneFrom) + " up"
+                            : TriangleExperiment.max(acne[m]) > 0 ? "acne only at scale " + scalesWith(x, acne[m]) : "no acne")
                     .append(", ")
                     .append(Double.isNaN(leaksUpTo) ? "no leaks" : "leaks at scale " + formatScale(leaksUpTo) + " and below")
                     .append("; ");
@@ -254,24 +255,38 @@ final class ShadowExperiment implements Experiment {
                 + " about %.0f%% of lit points (median over scales) are speckled with acne at every scale. Every fixed ε"
                 + " works only over a band of scene sizes (%s). The scale-aware offset (Shadows.isShadowed) had at most"
                 + " %.1f%% acne and %.1f%% leaks from 10^%d to 10^%d. It costs %.1f ns per shadow test against %.1f ns"
-                + " for the fixed ε = 10⁻⁶ (%+.0f%%): the any-hit query dominates.",
+                + " for the fixed ε = 10⁻⁶ (%+.0f%%).",
                 median(acne[0]), fixed.toString().replaceAll("; $", ""), TriangleExperiment.max(acne[REFERENCE]),
                 TriangleExperiment.max(leaks[REFERENCE]), lo, hi, cost[REFERENCE].median(), cost[FIXED].median(),
                 100 * (cost[REFERENCE].median() / cost[FIXED].median() - 1)));
     }
 
-    /** The first scale from which (up: true) or the last up to which (up: false) the rate is non-zero; NaN if none. */
+    /**
+     * up: the smallest scale from which the rate is non-zero at every larger scale measured;
+     * down: the largest scale up to which it is non-zero at every smaller scale. NaN if none.
+     */
     static double firstScale(double[] x, double[] rate, boolean up) {
         double found = Double.NaN;
-        for (int k = 0; k < x.length; k++) {
-            if (rate[k] > 0) {
-                if (up) {
-                    return x[k];
-                }
+        if (up) {
+            for (int k = x.length - 1; k >= 0 && rate[k] > 0; k--) {
+                found = x[k];
+            }
+        } else {
+            for (int k = 0; k < x.length && rate[k] > 0; k++) {
                 found = x[k];
             }
         }
         return found;
+    }
+
+    static String scalesWith(double[] x, double[] rate) {
+        List<String> out = new ArrayList<>();
+        for (int k = 0; k < x.length; k++) {
+            if (rate[k] > 0) {
+                out.add(formatScale(x[k]));
+            }
+        }
+        return String.join(", ", out);
     }
 
     static String formatScale(double s) {

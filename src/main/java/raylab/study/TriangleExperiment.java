@@ -222,7 +222,7 @@ final class TriangleExperiment implements Experiment {
                 + (worstWatertight == 0 ? "It never let a ray through a shared edge or vertex (%.0f misses per million)"
                     : "It let through at most %,.0f rays per million through a shared edge or vertex")
                 + "; the lecture's method let through up to %,.0f and Möller–Trumbore"
-                + " up to %,.0f per million, more for vertex rays and far from the origin. It costs %.1f ns per test,"
+                + " up to %,.0f per million. It costs %.1f ns per test,"
                 + " against %.1f ns (lecture) and %.1f ns (Möller–Trumbore): %+.0f%% over the fastest. For a single"
                 + " triangle, with no shared edges, Möller–Trumbore is the cheap choice.",
                 worstWatertight, worstLecture, worstMt, cost[2].median(), cost[0].median(), cost[1].median(),
