@@ -1,6 +1,5 @@
 package raylab.course.release;
 
-import java.io.File;
 import java.io.IOException;
 import java.nio.charset.StandardCharsets;
 import java.nio.file.Files;
@@ -16,13 +15,13 @@ import java.util.List;
 import java.util.Map;
 import java.util.Set;
 import java.util.TreeSet;
+import java.util.concurrent.Callable;
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.ConcurrentHashMap;
 import java.util.concurrent.ExecutionException;
 import java.util.concurrent.ExecutorService;
 import java.util.concurrent.Executors;
 import java.util.concurrent.Future;
-import java.util.concurrent.TimeUnit;
 import java.util.regex.Matcher;
 import java.util.regex.Pattern;
 import java.util.stream.Collectors;
@@ -134,7 +133,9 @@ public final class ReleaseVerifier {
                     List<Future<List<Check>>> jobs = new ArrayList<>();
                     jobs.add(pool.submit(this::stubsOnly));
                     for (Assignment a : assignments.all()) {
-                        jobs.add(pool.submit(() -> milestone(a)));
+                        for (Callable<List<Check>> job : milestoneJobs(a)) {
+                            jobs.add(pool.submit(job));
+                        }
                     }
                     for (Future<List<Check>> j : jobs) {
                         checks.addAll(get(j, "milestone checks"));
@@ -411,18 +412,28 @@ public final class ReleaseVerifier {
         return out;
     }
 
-    private List<Check> milestone(Assignment a) throws IOException {
-        List<Check> out = new ArrayList<>();
+    /**
+     * The checks of one milestone, as separate jobs (tests, each scene, the scene without the
+     * solution) so that two workers stay busy; results keep this order.
+     */
+    private List<Callable<List<Check>>> milestoneJobs(Assignment a) {
+        List<Callable<List<Check>>> jobs = new ArrayList<>();
         Set<String> with = new TreeSet<>(a.requires());
         with.add(a.id());
-        String label = a.id() + (a.requires().isEmpty() ? "" : " (with " + String.join(", ", a.requires()) + ")");
-
-        Path overlay = overlay(with);
-        if (overlay == null) {
-            out.add(new Check(a.id() + ": its solution compiles over the stubs", false,
-                    "see the compile errors above"));
-            return out;
+        jobs.add(() -> milestoneTests(a, with));
+        for (Assignment.GradedScene g : a.scenes()) {
+            jobs.add(() -> List.of(render(a, g, with)));
         }
+        if (!a.scenes().isEmpty()) {
+            jobs.add(() -> List.of(renderWithout(a)));
+        }
+        return jobs;
+    }
+
+    private List<Check> milestoneTests(Assignment a, Set<String> with) throws IOException {
+        List<Check> out = new ArrayList<>();
+        String label = a.id() + (a.requires().isEmpty() ? "" : " (with " + String.join(", ", a.requires()) + ")");
+        Path overlay = overlay(with);
         List<TestResult> results = runTests(overlay, "with-" + a.id());
         List<TestResult> mine = of(results, a.id());
         List<String> failing = mine.stream().filter(r -> !r.status().passed())
@@ -441,46 +452,41 @@ public final class ReleaseVerifier {
                 }
             }
         }
-        out.add(Check.of(label + ": the other milestones' " + otherCount + " tests still fail", others, ""));
-
-        Path without = a.requires().isEmpty() ? null : overlay(new TreeSet<>(a.requires()));
+        if (otherCount > 0) {
+            out.add(Check.of(label + ": the other milestones' " + otherCount + " tests still fail", others, ""));
+        }
         if (!a.requires().isEmpty()) {
-            if (without == null) {
-                out.add(new Check(a.id() + ": requires compile", false, "see the compile errors above"));
-            } else {
-                List<TestResult> req = of(runTests(without, "without-" + a.id()), a.id());
-                List<String> problems = new ArrayList<>();
-                for (TestResult r : req) {
-                    if (r.status().passed()) {
-                        problems.add(name(r) + " passes without " + a.id() + "'s code");
-                    } else if (!r.message().contains("'" + a.id() + "' " + NOT_IMPLEMENTED)) {
-                        problems.add(name(r) + " does not name milestone " + a.id() + ": "
-                                + abbreviate(r.message(), 100));
-                    }
+            List<TestResult> req = of(runTests(overlay(new TreeSet<>(a.requires())), "without-" + a.id()), a.id());
+            List<String> problems = new ArrayList<>();
+            for (TestResult r : req) {
+                if (r.status().passed()) {
+                    problems.add(name(r) + " passes without " + a.id() + "'s code");
+                } else if (!r.message().contains("'" + a.id() + "' " + NOT_IMPLEMENTED)) {
+                    problems.add(name(r) + " does not name milestone " + a.id() + ": "
+                            + abbreviate(r.message(), 100));
                 }
-                out.add(Check.of(a.id() + ": with only " + String.join(", ", a.requires())
-                        + " put back, its tests fail naming '" + a.id() + "'", problems, ""));
             }
-        }
-
-        for (Assignment.GradedScene g : a.scenes()) {
-            out.add(render(a, g, overlay));
-        }
-        if (!a.scenes().isEmpty() && (a.requires().isEmpty() || without != null)) {
-            String scene = a.scenes().get(0).scene();
-            Path png = work.resolve("renders/without-" + a.id() + "-" + baseName(scene) + ".png");
-            Files.createDirectories(png.getParent());
-            MilestoneBuild.RenderOutcome o = MilestoneBuild.renderInChild(
-                    cp(without, mainClasses), starter.resolve(scene), png, Duration.ofSeconds(120), 512, work);
-            boolean ok = o.exitStatus() == 3 && o.message().contains("'" + a.id() + "'")
-                    && !o.message().contains("\n");
-            out.add(new Check(a.id() + ": without its solution, " + scene + " stops naming '" + a.id() + "'", ok,
-                    "exit " + o.exitStatus() + ", \"" + abbreviate(o.message(), 120) + "\""));
+            out.add(Check.of(a.id() + ": with only " + String.join(", ", a.requires())
+                    + " put back, its tests fail naming '" + a.id() + "'", problems, ""));
         }
         return out;
     }
 
-    private Check render(Assignment a, Assignment.GradedScene g, Path overlay) throws IOException {
+    /** The milestone's first scene, with only the milestones it requires put back: exit 3 naming it. */
+    private Check renderWithout(Assignment a) throws IOException {
+        Path without = a.requires().isEmpty() ? null : overlay(new TreeSet<>(a.requires()));
+        String scene = a.scenes().get(0).scene();
+        Path png = work.resolve("renders/without-" + a.id() + "-" + baseName(scene) + ".png");
+        Files.createDirectories(png.getParent());
+        MilestoneBuild.RenderOutcome o = MilestoneBuild.renderInChild(
+                cp(without, mainClasses), starter.resolve(scene), png, Duration.ofSeconds(120), 512, work);
+        boolean ok = o.exitStatus() == 3 && o.message().contains("'" + a.id() + "'");
+        return new Check(a.id() + ": without its solution, " + scene + " stops naming '" + a.id() + "'", ok,
+                "exit " + o.exitStatus() + ", \"" + abbreviate(o.message(), 120) + "\"");
+    }
+
+    private Check render(Assignment a, Assignment.GradedScene g, Set<String> with) throws IOException {
+        Path overlay = overlay(with);
         String name = a.id() + ": " + g.scene() + " renders and matches " + g.reference();
         Path png = work.resolve("renders/" + a.id() + "-" + baseName(g.scene()) + ".png");
         Files.createDirectories(png.getParent());
@@ -525,8 +531,6 @@ public final class ReleaseVerifier {
         }
     }
 
-    private final List<String> overlayErrors = new ArrayList<>();
-
     private Path compileOverlay(Set<String> milestones, String key) throws IOException {
         Map<String, String> files = new LinkedHashMap<>();
         for (String id : milestones) {
@@ -540,9 +544,6 @@ public final class ReleaseVerifier {
         JavaBuild.Result r = MilestoneBuild.compileOverlay(files, dir.resolve("src"), cp(mainClasses),
                 dir.resolve("classes"));
         if (!r.success()) {
-            synchronized (overlayErrors) {
-                overlayErrors.add(key + ": " + r.errors());
-            }
             throw new IOException("the solutions of " + key + " do not compile over the stubs: "
                     + summarize(r.errors().stream().map(Object::toString).toList()));
         }
@@ -618,16 +619,5 @@ public final class ReleaseVerifier {
         }
         int nl = s.indexOf('\n');
         return (nl < 0 ? s : s.substring(0, nl)).strip();
-    }
-
-    static String pathList(List<Path> cp) {
-        return cp.stream().map(Path::toString).collect(Collectors.joining(File.pathSeparator));
-    }
-
-    static void waitQuietly(Process p, long seconds) throws InterruptedException {
-        if (!p.waitFor(seconds, TimeUnit.SECONDS)) {
-            p.descendants().forEach(ProcessHandle::destroyForcibly);
-            p.destroyForcibly();
-        }
     }
 }
