@@ -73,16 +73,18 @@ public final class CheckCommand implements Callable<Integer> {
         if (!o.problem().isEmpty()) {
             lines.add("  " + o.problem());
         }
-        int shown = 0;
-        for (TestResult t : o.tests()) {
-            if (!t.status().passed() && shown++ < 5) {
+        List<TestResult> failing = o.tests().stream().filter(t -> !t.status().passed()).toList();
+        if (failing.size() > 1 && failing.stream().map(TestResult::message).distinct().count() == 1) {
+            lines.add("  FAIL all " + failing.size() + " failing tests: " + oneLine(failing.get(0).message()));
+        } else {
+            for (TestResult t : failing.subList(0, Math.min(5, failing.size()))) {
                 String c = t.className().substring(t.className().lastIndexOf('.') + 1);
                 lines.add("  FAIL " + c + "." + t.method() + ": " + oneLine(t.message()));
             }
-        }
-        if (shown > 5) {
-            lines.add("  ... and " + (shown - 5) + " more failing tests (./mvnw test -Dgroups=" + o.assignment().id()
-                    + " shows them all)");
+            if (failing.size() > 5) {
+                lines.add("  ... and " + (failing.size() - 5) + " more failing tests (./mvnw test -Dgroups="
+                        + o.assignment().id() + " shows them all)");
+            }
         }
         for (MilestoneCheck.SceneOutcome s : o.scenes()) {
             lines.add("  " + (s.matches() ? "match " : "scene ") + s.scene().scene() + ": " + oneLine(s.message()));
