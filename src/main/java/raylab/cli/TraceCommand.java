@@ -63,15 +63,15 @@ public final class TraceCommand implements Callable<Integer> {
         }
         Ray ray = scene.camera.rayThroughPixelCenter(x, y);
         out.println("eye ray");
-        out.println("  p = " + ray.p + "   d = " + ray.d + "   t in [" + ray.tMin + ", " + ray.tMax + "]");
+        out.println("  p = " + v(ray.p) + "   d = " + v(ray.d) + "   t in [" + ray.tMin + ", " + ray.tMax + "]");
         IntersectionRecord hit = new IntersectionRecord();
         if (!renderer.root().intersect(hit, ray)) {
-            out.println("  no hit: background " + scene.background);
+            out.println("  no hit: background " + c(scene.background));
             out.println(finalColour(scene.background));
             return Main.OK;
         }
         out.printf("  hit \"%s\" at t = %s%n", hit.surface.name(), num(hit.t));
-        out.println("    point  x = " + hit.point);
+        out.println("    point  x = " + v(hit.point));
         Material m = hit.material;
         out.println("    material \"" + m.name() + "\": " + describe(m));
         shader.listen(new Printer(out));
@@ -82,25 +82,34 @@ public final class TraceCommand implements Callable<Integer> {
 
     private static String finalColour(Color c) {
         int rgb = Image.toRgb8(c);
-        return String.format("colour L = %s  ->  8-bit sRGB (%d, %d, %d)%s", c, (rgb >> 16) & 0xFF,
+        return String.format("colour L = %s  ->  8-bit sRGB (%d, %d, %d)%s", c(c), (rgb >> 16) & 0xFF,
                 (rgb >> 8) & 0xFF, rgb & 0xFF, c.isFinite() ? "" : "  NOT FINITE (drawn magenta)");
     }
 
     static String describe(Material m) {
         if (m instanceof BlinnPhong b) {
-            return "Blinn-Phong, kd = " + b.kd + ", ks = " + b.ks + ", p = " + num(b.p) + ", ka = " + b.ka;
+            return "Blinn-Phong, kd = " + c(b.kd) + ", ks = " + c(b.ks) + ", p = " + num(b.p) + ", ka = " + c(b.ka);
         }
         if (m instanceof Lambertian l) {
-            return "Lambertian, kd = " + l.kd + ", ka = " + l.ka;
+            return "Lambertian, kd = " + c(l.kd) + ", ka = " + c(l.ka);
         }
         if (m instanceof FlatColor f) {
-            return "flat colour " + f.color + " (ignores lights)";
+            return "flat colour " + c(f.color) + " (ignores lights)";
         }
         return m.getClass().getSimpleName() + (m.isLit() ? "" : " (ignores lights)");
     }
 
     static String num(double v) {
-        return String.format("%.6g", v);
+        return Double.isFinite(v) ? String.format("%.6g", v).replaceFirst("(\\.\\d*?)0+$", "$1").replaceFirst("\\.$", "")
+                : Double.toString(v);
+    }
+
+    static String v(Vec3 a) {
+        return "(" + num(a.x) + ", " + num(a.y) + ", " + num(a.z) + ")";
+    }
+
+    static String c(Color a) {
+        return "rgb(" + num(a.r) + ", " + num(a.g) + ", " + num(a.b) + ")";
     }
 
     /** Prints each shading step as the shader takes it. */
@@ -113,19 +122,19 @@ public final class TraceCommand implements Callable<Integer> {
 
         @Override
         public void normal(Vec3 outward, Vec3 facing) {
-            out.println("    normal n = " + facing + (outward.equals(facing) ? "" : "  (outward normal "
-                    + outward + " flipped: the ray hits the back side)"));
+            out.println("    normal n = " + v(facing) + (outward.equals(facing) ? "" : "  (outward normal "
+                    + v(outward) + " flipped: the ray hits the back side)"));
         }
 
         @Override
         public void ambient(Color term) {
-            out.println("  ambient  ka*Ia = " + term);
+            out.println("  ambient  ka*Ia = " + c(term));
         }
 
         @Override
         public void light(PointLight light, Vec3 l, double nDotL) {
-            out.printf("  light \"%s\" at %s, I = %s%n    l = %s   n.l = %s%n", light.name, light.position,
-                    light.intensity, l, num(nDotL));
+            out.printf("  light \"%s\" at %s, I = %s%n    l = %s   n.l = %s%n", light.name, v(light.position),
+                    c(light.intensity), v(l), num(nDotL));
         }
 
         @Override
@@ -151,12 +160,12 @@ public final class TraceCommand implements Callable<Integer> {
 
         @Override
         public void diffuse(PointLight light, Color term) {
-            out.println("    diffuse  kd*I*max(0, n.l)     = " + term);
+            out.println("    diffuse  kd*I*max(0, n.l)     = " + c(term));
         }
 
         @Override
         public void specular(PointLight light, Color term) {
-            out.println("    specular ks*I*max(0, n.h)^p   = " + term);
+            out.println("    specular ks*I*max(0, n.h)^p   = " + c(term));
         }
     }
 }

@@ -137,11 +137,8 @@ public final class RenderPlan {
         return List.copyOf(lines);
     }
 
-    /** The surface to trace against: the scene's surfaces in a hierarchy or a linear group. */
+    /** The surface to trace against: the scene's surfaces in a hierarchy or a linear group (which counts tests). */
     public Surface root(Scene scene) {
-        if (scene.surfaces.size() == 1 && !acceleration) {
-            return scene.surfaces.get(0);
-        }
         return acceleration ? new raylab.surface.Bvh(scene.surfaces, "scene")
                 : new raylab.surface.Group(scene.surfaces, "scene");
     }
