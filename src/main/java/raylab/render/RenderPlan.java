@@ -44,7 +44,9 @@ public final class RenderPlan {
             note("lighting", scene.lights.size() + " light(s), " + lit.size() + " lit material(s)");
         }
 
-        long withKa = lit.stream().filter(m -> !m.ka().isBlack()).count();
+        // ka is asked for only once the scene's switch and Ia leave the ambient term possible.
+        long withKa = Boolean.FALSE.equals(scene.effects.ambient()) || scene.ambient.isBlack() ? 0
+                : lit.stream().filter(m -> !m.ka().isBlack()).count();
         if (Boolean.FALSE.equals(scene.effects.ambient())) {
             ambient = false;
             note("ambient", "off: switched off by the scene");
