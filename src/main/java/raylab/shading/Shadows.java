@@ -43,6 +43,7 @@ public final class Shadows {
         Ray shadowRay = new Ray(origin, light.position.minus(origin), 0.0, 1.0);
         return scene.intersectsAny(shadowRay, scratch);
         // STUB
+        // // TODO(shadows): a shadow ray from just off x toward the light, t up to 1.
         // throw new NotImplemented("shadows", "Shadows.isShadowed");
         // END SOLUTION
     }

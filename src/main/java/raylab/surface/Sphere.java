@@ -74,6 +74,7 @@ public class Sphere extends Surface {
         outRecord.set(t, center.plus(normal.times(radius)), normal, this);
         return true;
         // STUB
+        // // TODO(sphere): the nearest root t in the ray's range and closer than outRecord.t.
         // throw new NotImplemented("sphere", "Sphere.intersect");
         // END SOLUTION
     }

@@ -87,6 +87,7 @@ public class Triangle extends Surface {
         outRecord.set(t, x, n.normalize(), this);
         return true;
         // STUB
+        // // TODO(triangle): hit the plane, then test the point against the three edges.
         // throw new NotImplemented("triangle", "Triangle.intersect");
         // END SOLUTION
     }
