@@ -30,6 +30,7 @@ import raylab.course.Assignment;
 import raylab.course.Assignments;
 import raylab.course.JavaBuild;
 import raylab.course.MilestoneBuild;
+import raylab.course.MilestoneCheck;
 import raylab.course.SolutionRegions;
 import raylab.course.TestLauncher;
 import raylab.course.TestResult;
@@ -347,7 +348,7 @@ public final class ReleaseVerifier {
         milestoneOfClass = new HashMap<>();
         for (Assignment a : assignments.all()) {
             for (String v : a.tests().visible()) {
-                milestoneOfClass.put(className(v), a.id());
+                milestoneOfClass.put(MilestoneCheck.className(v), a.id());
             }
         }
         expected = TestLauncher.discover(cp(mainClasses, testClasses), testClasses, List.of(), List.of(), work);
@@ -372,16 +373,6 @@ public final class ReleaseVerifier {
         String detail = counts.entrySet().stream().map(e -> e.getKey() + " " + e.getValue())
                 .collect(Collectors.joining(", "));
         return Check.of("visible tests found (" + detail + ")", problems, "");
-    }
-
-    /** The test class of a source path such as src/test/java/raylab/surface/SphereTest.java. */
-    static String className(String sourcePath) {
-        String p = sourcePath.replace('\\', '/');
-        int k = p.indexOf("src/test/java/");
-        if (k >= 0) {
-            p = p.substring(k + "src/test/java/".length());
-        }
-        return p.replaceFirst("\\.java$", "").replace('/', '.');
     }
 
     private String milestoneOf(TestResult r) {
