@@ -28,6 +28,7 @@ public final class Shader {
     private final double depthNear;
     private final double depthFar;
     private final IntersectionRecord scratch = new IntersectionRecord();
+    private ShadeListener listener;
 
     public Shader(Scene scene, Surface root, RenderPlan plan, Mode mode) {
         this.scene = scene;
@@ -42,9 +43,17 @@ public final class Shader {
         this.depthFar = center + radius;
     }
 
+    /** Reports every step of shading to {@code l} (null: none). */
+    public void listen(ShadeListener l) {
+        this.listener = l;
+    }
+
     /** The radiance seen along the ray, whose closest hit is in {@code hit}. */
     public Color shade(Ray ray, IntersectionRecord hit, RenderStats stats) {
         Vec3 n = facing(hit.normal, ray.d);
+        if (listener != null) {
+            listener.normal(hit.normal, n);
+        }
         switch (mode) {
             case NORMALS:
                 return NormalColor.of(n);
@@ -62,6 +71,9 @@ public final class Shader {
         Color L = Color.BLACK;
         if (mode == Mode.FULL && plan.ambient) {
             L = L.plus(m.ka().times(scene.ambient));
+            if (listener != null) {
+                listener.ambient(L);
+            }
         }
         if (!plan.lighting) {
             return mode == Mode.SHADOWS ? Color.WHITE : L;
@@ -75,7 +87,13 @@ public final class Shader {
         for (int i = 0; i < scene.lights.size(); i++) {
             PointLight light = scene.lights.get(i);
             Vec3 l = light.position.minus(x).normalize();
+            if (listener != null) {
+                listener.light(light, l, n.dot(l));
+            }
             if (n.dot(l) <= 0) {
+                if (listener != null) {
+                    listener.skipped(light, "behind the surface (n·l <= 0): no diffuse, no specular");
+                }
                 continue; // light behind the surface: neither term contributes
             }
             lights++;
@@ -84,18 +102,31 @@ public final class Shader {
                 boolean blocked = Shadows.isShadowed(root, x, n, light, scratch);
                 stats.intersectionTests += scratch.tests;
                 scratch.tests = 0;
+                if (listener != null) {
+                    listener.shadow(light, blocked, scratch);
+                }
                 if (blocked) {
                     stats.shadowRaysBlocked++;
                     continue;
                 }
+            } else if (listener != null) {
+                listener.noShadowRay(light);
             }
             visible++;
             if (mode == Mode.FULL || mode == Mode.DIFFUSE) {
-                L = L.plus(m.diffuse(n, l, light.intensity));
+                Color d = m.diffuse(n, l, light.intensity);
+                if (listener != null) {
+                    listener.diffuse(light, d);
+                }
+                L = L.plus(d);
             }
             if (specular) {
                 stats.specularEvaluations++;
-                L = L.plus(m.specular(n, l, v, light.intensity));
+                Color sp = m.specular(n, l, v, light.intensity);
+                if (listener != null) {
+                    listener.specular(light, sp);
+                }
+                L = L.plus(sp);
             }
         }
         if (mode == Mode.SHADOWS) {

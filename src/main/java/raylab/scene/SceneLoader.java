@@ -1,14 +1,699 @@
 package raylab.scene;
 
+import java.io.IOException;
+import java.nio.ByteBuffer;
+import java.nio.CharBuffer;
+import java.nio.charset.CharsetDecoder;
+import java.nio.charset.CoderResult;
+import java.nio.charset.CodingErrorAction;
+import java.nio.charset.StandardCharsets;
+import java.nio.file.AccessDeniedException;
+import java.nio.file.Files;
+import java.nio.file.NoSuchFileException;
 import java.nio.file.Path;
+import java.util.ArrayList;
+import java.util.Collection;
+import java.util.LinkedHashMap;
+import java.util.List;
+import java.util.Locale;
+import java.util.Map;
 
-/** Reads scene files (JSON, see docs/scene-format.md). */
+import raylab.camera.Camera;
+import raylab.camera.OrthographicCamera;
+import raylab.camera.PerspectiveCamera;
+import raylab.light.PointLight;
+import raylab.material.BlinnPhong;
+import raylab.material.FlatColor;
+import raylab.material.Lambertian;
+import raylab.material.Material;
+import raylab.material.NormalColor;
+import raylab.math.Color;
+import raylab.math.Vec3;
+import raylab.scene.JsonTree.Kind;
+import raylab.scene.JsonTree.Node;
+import raylab.surface.Box;
+import raylab.surface.Mesh;
+import raylab.surface.Sphere;
+import raylab.surface.Triangle;
+
+/**
+ * Reads scene files (JSON, see docs/scene-format.md and scenes/scene.schema.json).
+ *
+ * <p>Every problem is a {@link SceneException} whose message is one line:
+ * <pre>
+ *   file:line:column: $.json.path: what is wrong, the offending value, what is expected
+ * </pre>
+ * or {@code file: message} for problems without a place in the JSON (empty, unreadable or binary
+ * files).
+ */
 public final class SceneLoader {
-    private SceneLoader() {
+    /** Largest image width and height. */
+    public static final int MAX_IMAGE_SIZE = 16384;
+    /** Largest number of samples per pixel. */
+    public static final int MAX_SAMPLES_PER_PIXEL = 4096;
+
+    /**
+     * For each kind of JSON object, the keys the loader accepts, in documentation order. The kinds
+     * are named as in the schema: "scene" is the top level, the others are the schema's $defs.
+     */
+    public static final Map<String, List<String>> ACCEPTED_KEYS;
+    /** For each kind of JSON object, the keys it must have (lookAt|viewDirection aside). */
+    public static final Map<String, List<String>> REQUIRED_KEYS;
+
+    /** Surface "type" values and their kinds. */
+    static final Map<String, String> SURFACE_TYPES = ordered(
+            "sphere", "sphere", "box", "box", "triangle", "triangle", "mesh", "mesh");
+    /** Material "type" values and their kinds. */
+    static final Map<String, String> MATERIAL_TYPES = ordered(
+            "lambertian", "lambertian", "blinnPhong", "blinnPhong", "flat", "flat",
+            "normals", "normals");
+    /** Camera "type" values and their kinds. */
+    static final Map<String, String> CAMERA_TYPES = ordered(
+            "perspective", "perspectiveCamera", "orthographic", "orthographicCamera");
+    /** Light "type" values and their kinds. */
+    static final Map<String, String> LIGHT_TYPES = ordered("point", "pointLight");
+
+    /** How messages name each kind of object. */
+    private static final Map<String, String> KIND_NAMES = ordered(
+            "scene", "the top level of the scene",
+            "image", "the image settings",
+            "perspectiveCamera", "a perspective camera",
+            "orthographicCamera", "an orthographic camera",
+            "effects", "the effects",
+            "lambertian", "a lambertian material",
+            "blinnPhong", "a blinnPhong material",
+            "flat", "a flat material",
+            "normals", "a normals material",
+            "sphere", "a sphere",
+            "box", "a box",
+            "triangle", "a triangle",
+            "mesh", "a mesh",
+            "pointLight", "a point light");
+
+    static {
+        Map<String, List<String>> a = new LinkedHashMap<>();
+        Map<String, List<String>> r = new LinkedHashMap<>();
+        a.put("scene", List.of("$schema", "image", "camera", "background", "ambient", "effects",
+                "materials", "surfaces", "lights"));
+        r.put("scene", List.of("image", "camera", "surfaces"));
+        a.put("image", List.of("width", "height", "samplesPerPixel", "sampler"));
+        r.put("image", List.of("width", "height"));
+        a.put("perspectiveCamera", List.of("type", "eye", "lookAt", "viewDirection", "up", "fov"));
+        r.put("perspectiveCamera", List.of("type", "eye", "up", "fov"));
+        a.put("orthographicCamera",
+                List.of("type", "eye", "lookAt", "viewDirection", "up", "viewHeight"));
+        r.put("orthographicCamera", List.of("type", "eye", "up", "viewHeight"));
+        a.put("effects", List.of("shadows", "specular", "ambient", "acceleration"));
+        r.put("effects", List.of());
+        a.put("lambertian", List.of("type", "kd", "ka"));
+        r.put("lambertian", List.of("type", "kd"));
+        a.put("blinnPhong", List.of("type", "kd", "ks", "p", "ka"));
+        r.put("blinnPhong", List.of("type", "kd", "ks", "p"));
+        a.put("flat", List.of("type", "color"));
+        r.put("flat", List.of("type", "color"));
+        a.put("normals", List.of("type"));
+        r.put("normals", List.of("type"));
+        a.put("sphere", List.of("type", "name", "center", "radius", "material"));
+        r.put("sphere", List.of("type", "center", "radius", "material"));
+        a.put("box", List.of("type", "name", "min", "max", "material"));
+        r.put("box", List.of("type", "min", "max", "material"));
+        a.put("triangle", List.of("type", "name", "vertices", "material"));
+        r.put("triangle", List.of("type", "vertices", "material"));
+        a.put("mesh", List.of("type", "name", "file", "material", "scale", "translate"));
+        r.put("mesh", List.of("type", "file", "material"));
+        a.put("pointLight", List.of("type", "name", "position", "intensity", "shadows"));
+        r.put("pointLight", List.of("type", "position", "intensity"));
+        ACCEPTED_KEYS = java.util.Collections.unmodifiableMap(a);
+        REQUIRED_KEYS = java.util.Collections.unmodifiableMap(r);
+    }
+
+    private final String file;
+    private final Path dir;
+
+    private SceneLoader(Path file) {
+        this.file = file.toString();
+        this.dir = file.getParent();
     }
 
     /** Loads and checks a scene; every problem is a SceneException with a one-line message. */
     public static Scene load(Path file) throws SceneException {
-        throw new SceneException(file + ": the scene loader is not written yet");
+        String name = file.toString();
+        byte[] bytes;
+        try {
+            if (Files.isDirectory(file)) {
+                throw new SceneException(name + ": is a directory, not a scene file");
+            }
+            bytes = Files.readAllBytes(file);
+        } catch (NoSuchFileException e) {
+            throw new SceneException(name + ": no such file");
+        } catch (AccessDeniedException e) {
+            throw new SceneException(name + ": permission denied");
+        } catch (IOException e) {
+            throw new SceneException(name + ": cannot read: " + JsonTree.firstLine(e.getMessage()));
+        }
+        for (int i = 0; i < bytes.length; i++) {
+            if (bytes[i] == 0) {
+                throw new SceneException(name + ": not a text file (NUL byte at offset " + i
+                        + "); a scene file is UTF-8 JSON text");
+            }
+        }
+        return parse(decodeUtf8(bytes, name), file);
+    }
+
+    /**
+     * Checks and builds a scene from JSON text as if it were read from {@code pretendFile}: error
+     * messages start with it and mesh files are found relative to its directory.
+     */
+    public static Scene parse(String json, Path pretendFile) throws SceneException {
+        String name = pretendFile.toString();
+        if (json.isEmpty()) {
+            throw new SceneException(name + ": the file is empty (expected a JSON object with"
+                    + " image, camera and surfaces)");
+        }
+        if (json.chars().allMatch(c -> c == ' ' || c == '\t' || c == '\n' || c == '\r')) {
+            throw new SceneException(name + ": the file contains only whitespace (expected a JSON"
+                    + " object with image, camera and surfaces)");
+        }
+        int nul = json.indexOf('\0');
+        if (nul >= 0) {
+            throw new SceneException(name + ": not a text file (NUL character at offset " + nul
+                    + "); a scene file is UTF-8 JSON text");
+        }
+        Node root = JsonTree.read(json, name);
+        return new SceneLoader(pretendFile).scene(root);
+    }
+
+    private static String decodeUtf8(byte[] bytes, String name) throws SceneException {
+        CharsetDecoder dec = StandardCharsets.UTF_8.newDecoder()
+                .onMalformedInput(CodingErrorAction.REPORT)
+                .onUnmappableCharacter(CodingErrorAction.REPORT);
+        ByteBuffer in = ByteBuffer.wrap(bytes);
+        CharBuffer out = CharBuffer.allocate(bytes.length + 1);
+        CoderResult res = dec.decode(in, out, true);
+        if (res.isError()) {
+            int at = in.position();
+            throw new SceneException(name + ": not UTF-8 text (invalid byte 0x"
+                    + String.format("%02X", bytes[at] & 0xFF) + " at offset " + at
+                    + "); save the scene file as UTF-8");
+        }
+        dec.flush(out);
+        out.flip();
+        String s = out.toString();
+        return s.startsWith("\uFEFF") ? s.substring(1) : s;
+    }
+
+    // ---------------------------------------------------------------- the scene
+
+    private Scene scene(Node root) throws SceneException {
+        if (root.kind != Kind.OBJECT) {
+            throw fail(root, "a scene file must contain one JSON object {...}, got " + root.describe());
+        }
+        checkObject(root, "scene");
+        Scene.Builder b = Scene.builder().source(Path.of(file));
+
+        Node image = object(root.get("image"));
+        checkObject(image, "image");
+        int width = integer(image.get("width"), 1, MAX_IMAGE_SIZE, "width");
+        int height = integer(image.get("height"), 1, MAX_IMAGE_SIZE, "height");
+        b.size(width, height);
+        if (image.has("samplesPerPixel")) {
+            b.samplesPerPixel(integer(image.get("samplesPerPixel"), 1, MAX_SAMPLES_PER_PIXEL,
+                    "samplesPerPixel"));
+        }
+        b.sampler(image.has("sampler")
+                ? (choice(image.get("sampler"), List.of("random", "stratified"), "sampler")
+                        .equals("random") ? Sampler.RANDOM : Sampler.STRATIFIED)
+                : Sampler.STRATIFIED);
+
+        b.camera(camera(root.get("camera"), width, height));
+        b.background(root.has("background") ? color(root.get("background")) : Color.BLACK);
+        b.ambient(root.has("ambient") ? color(root.get("ambient")) : Color.BLACK);
+        if (root.has("effects")) {
+            b.effects(effects(root.get("effects")));
+        }
+
+        Map<String, Material> materials = new LinkedHashMap<>();
+        if (root.has("materials")) {
+            Node ms = object(root.get("materials"));
+            for (Map.Entry<String, Node> e : ms.fields.entrySet()) {
+                if (e.getKey().isBlank()) {
+                    throw failKey(ms, e.getKey(), "a material name must not be empty");
+                }
+                materials.put(e.getKey(), material(e.getValue(), e.getKey()));
+            }
+        }
+
+        Node surfaces = array(root.get("surfaces"));
+        for (int i = 0; i < surfaces.items.size(); i++) {
+            surface(b, surfaces.items.get(i), i, materials);
+        }
+
+        if (root.has("lights")) {
+            Node lights = array(root.get("lights"));
+            for (int i = 0; i < lights.items.size(); i++) {
+                b.add(light(lights.items.get(i), i));
+            }
+        }
+        return b.build();
+    }
+
+    private Effects effects(Node n) throws SceneException {
+        object(n);
+        checkObject(n, "effects");
+        return new Effects(optionalBool(n, "shadows"), optionalBool(n, "specular"),
+                optionalBool(n, "ambient"), optionalBool(n, "acceleration"));
+    }
+
+    private Boolean optionalBool(Node obj, String key) throws SceneException {
+        return obj.has(key) ? bool(obj.get(key)) : null;
+    }
+
+    // ---------------------------------------------------------------- camera
+
+    private Camera camera(Node n, int width, int height) throws SceneException {
+        String kind = typed(n, CAMERA_TYPES, "camera");
+        Vec3 eye = vec3(n.get("eye"));
+        Vec3 up = vec3(n.get("up"));
+        Vec3 view;
+        if (n.has("lookAt") && n.has("viewDirection")) {
+            throw fail(n.get("viewDirection"), "give either \"lookAt\" or \"viewDirection\", not both");
+        } else if (n.has("lookAt")) {
+            Vec3 lookAt = vec3(n.get("lookAt"));
+            view = lookAt.minus(eye);
+            if (view.lengthSquared() == 0) {
+                throw fail(n.get("lookAt"), "lookAt equals eye " + fmt(eye)
+                        + ", so there is no view direction; lookAt must differ from eye");
+            }
+        } else if (n.has("viewDirection")) {
+            view = vec3(n.get("viewDirection"));
+            if (view.lengthSquared() == 0) {
+                throw fail(n.get("viewDirection"), "viewDirection must not be the zero vector");
+            }
+        } else {
+            throw fail(n, "missing \"lookAt\" or \"viewDirection\": the camera needs one of them");
+        }
+        if (up.lengthSquared() == 0) {
+            throw fail(n.get("up"), "up must not be the zero vector");
+        }
+        if (!Camera.frameExists(view, up)) {
+            throw fail(n.get("up"), "up " + fmt(up) + " is parallel to the view direction "
+                    + fmt(view) + "; choose an up vector that is not parallel to it");
+        }
+        if (kind.equals("perspectiveCamera")) {
+            Node fovNode = n.get("fov");
+            double fov = number(fovNode);
+            if (!(fov > 0 && fov < 180)) {
+                throw fail(fovNode, "fov must be between 0 and 180 degrees (exclusive), got "
+                        + fovNode.text);
+            }
+            return new PerspectiveCamera(eye, view, up, fov, width, height);
+        }
+        double viewHeight = positive(n.get("viewHeight"), "viewHeight");
+        return new OrthographicCamera(eye, view, up, viewHeight, width, height);
+    }
+
+    // ---------------------------------------------------------------- materials
+
+    private Material material(Node n, String name) throws SceneException {
+        String kind = typed(n, MATERIAL_TYPES, "material");
+        switch (kind) {
+            case "lambertian": {
+                Color kd = color(n.get("kd"));
+                Color ka = n.has("ka") ? color(n.get("ka")) : kd;
+                return new Lambertian(kd, ka, name);
+            }
+            case "blinnPhong": {
+                Color kd = color(n.get("kd"));
+                Color ks = color(n.get("ks"));
+                double p = number(n.get("p"));
+                if (p < 0) {
+                    throw fail(n.get("p"), "the exponent p must be at least 0, got " + n.get("p").text);
+                }
+                Color ka = n.has("ka") ? color(n.get("ka")) : kd;
+                return new BlinnPhong(kd, ks, p, ka, name);
+            }
+            case "flat":
+                return new FlatColor(color(n.get("color")), name);
+            default:
+                return new NormalColor(name);
+        }
+    }
+
+    // ---------------------------------------------------------------- surfaces
+
+    private void surface(Scene.Builder b, Node n, int index, Map<String, Material> materials)
+            throws SceneException {
+        String kind = typed(n, SURFACE_TYPES, "surface");
+        String name = name(n, n.get("type").text + " #" + index);
+        Material m = materialRef(n.get("material"), materials);
+        switch (kind) {
+            case "sphere":
+                b.add(new Sphere(vec3(n.get("center")), positive(n.get("radius"), "radius"), m, name));
+                return;
+            case "box": {
+                Vec3 min = vec3(n.get("min"));
+                Vec3 max = vec3(n.get("max"));
+                for (int axis = 0; axis < 3; axis++) {
+                    if (min.get(axis) > max.get(axis)) {
+                        String c = "xyz".substring(axis, axis + 1);
+                        throw fail(n.get("max"), "max." + c + " = " + fmt(max.get(axis))
+                                + " is less than min." + c + " = " + fmt(min.get(axis))
+                                + "; a box needs min <= max in every axis");
+                    }
+                }
+                b.add(new Box(min, max, m, name));
+                return;
+            }
+            case "triangle": {
+                Node vs = array(n.get("vertices"));
+                if (vs.items.size() != 3) {
+                    throw fail(vs, "expected 3 vertices [[x, y, z], [x, y, z], [x, y, z]], got "
+                            + vs.items.size());
+                }
+                b.add(new Triangle(vec3(vs.items.get(0)), vec3(vs.items.get(1)),
+                        vec3(vs.items.get(2)), m, name));
+                return;
+            }
+            default:
+                b.add(mesh(n, name, m));
+        }
+    }
+
+    private Mesh mesh(Node n, String name, Material m) throws SceneException {
+        Node fileNode = n.get("file");
+        String rel = string(fileNode);
+        if (rel.isBlank()) {
+            throw fail(fileNode, "file must not be empty: give the path of an OBJ file");
+        }
+        double scale = n.has("scale") ? positive(n.get("scale"), "scale") : 1;
+        Vec3 translate = n.has("translate") ? vec3(n.get("translate")) : Vec3.ZERO;
+        Path obj = dir == null ? Path.of(rel) : dir.resolve(rel);
+        List<Vec3[]> read;
+        try {
+            read = ObjLoader.readTriangles(obj, obj.toString());
+        } catch (ObjLoader.ObjException e) {
+            throw fail(fileNode, e.getMessage());
+        } catch (java.nio.file.InvalidPathException e) {
+            throw fail(fileNode, "invalid path " + JsonTree.quote(rel));
+        }
+        List<Triangle> triangles = new ArrayList<>(read.size());
+        for (Vec3[] t : read) {
+            Vec3 a = t[0].times(scale).plus(translate);
+            Vec3 bb = t[1].times(scale).plus(translate);
+            Vec3 c = t[2].times(scale).plus(translate);
+            if (!a.isFinite() || !bb.isFinite() || !c.isFinite()) {
+                throw fail(n.has("scale") ? n.get("scale") : fileNode, "scaling and translating "
+                        + obj + " gives coordinates too large to represent");
+            }
+            triangles.add(new Triangle(a, bb, c, m, name + " triangle #" + triangles.size()));
+        }
+        return new Mesh(triangles, name);
+    }
+
+    private Material materialRef(Node n, Map<String, Material> materials) throws SceneException {
+        String ref = string(n);
+        Material m = materials.get(ref);
+        if (m != null) {
+            return m;
+        }
+        if (materials.isEmpty()) {
+            throw fail(n, "undefined material " + JsonTree.quote(ref)
+                    + "; the scene defines no materials (define it under \"materials\")");
+        }
+        String close = suggest(ref, materials.keySet());
+        throw fail(n, "undefined material " + JsonTree.quote(ref)
+                + (close != null ? " (did you mean " + JsonTree.quote(close) + "?)" : "")
+                + "; defined materials: " + String.join(", ", materials.keySet()));
+    }
+
+    private String name(Node obj, String fallback) throws SceneException {
+        if (!obj.has("name")) {
+            return fallback;
+        }
+        String s = string(obj.get("name"));
+        if (s.isBlank()) {
+            throw fail(obj.get("name"), "name must not be empty (leave it out for the default \""
+                    + fallback + "\")");
+        }
+        return s;
+    }
+
+    // ---------------------------------------------------------------- lights
+
+    private PointLight light(Node n, int index) throws SceneException {
+        typed(n, LIGHT_TYPES, "light");
+        String name = name(n, "light #" + index);
+        Vec3 position = vec3(n.get("position"));
+        Color intensity = color(n.get("intensity"));
+        boolean shadows = n.has("shadows") ? bool(n.get("shadows")) : true;
+        return new PointLight(position, intensity, shadows, name);
+    }
+
+    // ---------------------------------------------------------------- structure checks
+
+    /**
+     * Checks that n is an object with a known "type", then its keys; returns the kind.
+     *
+     * @param family "surface", "material", "camera" or "light", for messages
+     */
+    private String typed(Node n, Map<String, String> types, String family) throws SceneException {
+        object(n);
+        if (!n.has("type")) {
+            throw fail(n, "missing required key \"type\" (the " + family + " type: one of "
+                    + String.join(", ", types.keySet()) + ")");
+        }
+        Node t = n.get("type");
+        String type = string(t);
+        String kind = types.get(type);
+        if (kind == null) {
+            String close = suggest(type, types.keySet());
+            throw fail(t, "unknown " + family + " type " + JsonTree.quote(type)
+                    + (close != null ? " (did you mean " + JsonTree.quote(close) + "?)" : "")
+                    + "; expected one of: " + String.join(", ", types.keySet()));
+        }
+        checkObject(n, kind);
+        return kind;
+    }
+
+    /** Unknown keys, then missing required keys, of an object of the given kind. */
+    private void checkObject(Node n, String kind) throws SceneException {
+        List<String> allowed = ACCEPTED_KEYS.get(kind);
+        for (String key : n.fields.keySet()) {
+            if (!allowed.contains(key)) {
+                String close = suggest(key, allowed);
+                StringBuilder m = new StringBuilder("unknown key " + JsonTree.quote(key) + " in "
+                        + KIND_NAMES.get(kind));
+                String elsewhere = siblingWithKey(kind, key);
+                if (elsewhere != null) {
+                    m.append(" (it belongs to ").append(elsewhere).append(')');
+                } else if (close != null) {
+                    m.append(" (did you mean ").append(JsonTree.quote(close)).append("?)");
+                }
+                m.append("; allowed keys: ").append(String.join(", ", allowed));
+                throw failKey(n, key, m.toString());
+            }
+        }
+        for (String key : REQUIRED_KEYS.get(kind)) {
+            if (!n.has(key)) {
+                throw fail(n, "missing required key " + JsonTree.quote(key) + " in "
+                        + KIND_NAMES.get(kind));
+            }
+        }
+    }
+
+    /** Another kind of the same family (camera, material, surface) that accepts key, or null. */
+    private static String siblingWithKey(String kind, String key) {
+        for (Map<String, String> family : List.of(CAMERA_TYPES, MATERIAL_TYPES, SURFACE_TYPES)) {
+            if (family.containsValue(kind)) {
+                for (String other : family.values()) {
+                    if (!other.equals(kind) && ACCEPTED_KEYS.get(other).contains(key)) {
+                        return KIND_NAMES.get(other);
+                    }
+                }
+            }
+        }
+        return null;
+    }
+
+    private Node object(Node n) throws SceneException {
+        if (n.kind != Kind.OBJECT) {
+            throw fail(n, "expected an object {...}, got " + n.describe());
+        }
+        return n;
+    }
+
+    private Node array(Node n) throws SceneException {
+        if (n.kind != Kind.ARRAY) {
+            throw fail(n, "expected an array [...], got " + n.describe());
+        }
+        return n;
+    }
+
+    private String string(Node n) throws SceneException {
+        if (n.kind != Kind.STRING) {
+            throw fail(n, "expected a string, got " + n.describe());
+        }
+        return n.text;
+    }
+
+    private boolean bool(Node n) throws SceneException {
+        if (n.kind != Kind.BOOLEAN) {
+            throw fail(n, "expected true or false, got " + n.describe());
+        }
+        return n.bool;
+    }
+
+    private double number(Node n) throws SceneException {
+        if (n.kind != Kind.NUMBER) {
+            throw fail(n, "expected a number, got " + n.describe());
+        }
+        return n.number;
+    }
+
+    private double positive(Node n, String what) throws SceneException {
+        double d = number(n);
+        if (!(d > 0)) {
+            throw fail(n, what + " must be positive, got " + n.text);
+        }
+        return d;
+    }
+
+    private int integer(Node n, int min, int max, String what) throws SceneException {
+        double d = number(n);
+        if (d != Math.rint(d)) {
+            throw fail(n, what + " must be an integer, got " + n.text);
+        }
+        if (d < min || d > max) {
+            throw fail(n, what + " must be from " + min + " to " + max + ", got " + n.text);
+        }
+        return (int) d;
+    }
+
+    private String choice(Node n, List<String> options, String what) throws SceneException {
+        String s = string(n);
+        if (!options.contains(s)) {
+            String close = suggest(s, options);
+            throw fail(n, "unknown " + what + " " + JsonTree.quote(s)
+                    + (close != null ? " (did you mean " + JsonTree.quote(close) + "?)" : "")
+                    + "; expected one of: " + String.join(", ", options));
+        }
+        return s;
+    }
+
+    private Vec3 vec3(Node n) throws SceneException {
+        if (n.kind != Kind.ARRAY) {
+            throw fail(n, "expected an array of 3 numbers [x, y, z], got " + n.describe());
+        }
+        if (n.items.size() != 3) {
+            throw fail(n, "expected 3 numbers [x, y, z], got " + n.items.size());
+        }
+        return new Vec3(number(n.items.get(0)), number(n.items.get(1)), number(n.items.get(2)));
+    }
+
+    /** [r, g, b] or a single number g meaning [g, g, g]; components finite and non-negative. */
+    private Color color(Node n) throws SceneException {
+        if (n.kind == Kind.NUMBER) {
+            double g = component(n);
+            return new Color(g, g, g);
+        }
+        if (n.kind != Kind.ARRAY) {
+            throw fail(n, "expected a colour: [r, g, b] or one number for gray, got " + n.describe());
+        }
+        if (n.items.size() != 3) {
+            throw fail(n, "expected 3 numbers [r, g, b], got " + n.items.size());
+        }
+        return new Color(component(n.items.get(0)), component(n.items.get(1)),
+                component(n.items.get(2)));
+    }
+
+    private double component(Node n) throws SceneException {
+        double d = number(n);
+        if (d < 0) {
+            throw fail(n, "colour components must not be negative, got " + n.text);
+        }
+        return d;
+    }
+
+    // ---------------------------------------------------------------- messages
+
+    private SceneException fail(Node n, String message) {
+        return new SceneException(file + ":" + n.pos.line() + ":" + n.pos.column() + ": " + n.path
+                + ": " + message);
+    }
+
+    private SceneException failKey(Node obj, String key, String message) {
+        JsonTree.Pos p = obj.keyPos.get(key);
+        return new SceneException(file + ":" + p.line() + ":" + p.column() + ": "
+                + obj.childPath(key) + ": " + message);
+    }
+
+    private static String fmt(Vec3 v) {
+        return "[" + fmt(v.x) + ", " + fmt(v.y) + ", " + fmt(v.z) + "]";
+    }
+
+    private static String fmt(double d) {
+        if (d == Math.rint(d) && Math.abs(d) < 1e15) {
+            return Long.toString((long) d);
+        }
+        return Double.toString(d);
+    }
+
+    /**
+     * The option closest to what was given, if close enough to be a likely typo (small edit
+     * distance, different case, or one containing the other), else null.
+     */
+    static String suggest(String given, Collection<String> options) {
+        String g = given.toLowerCase(Locale.ROOT);
+        String best = null;
+        int bestDistance = Integer.MAX_VALUE;
+        for (String o : options) {
+            String lo = o.toLowerCase(Locale.ROOT);
+            int d = lo.equals(g) ? 0 : editDistance(g, lo);
+            if (d < bestDistance) {
+                bestDistance = d;
+                best = o;
+            }
+        }
+        if (best != null && (bestDistance <= 2 || bestDistance <= g.length() / 3)
+                && bestDistance < Math.max(g.length(), best.length())) {
+            return best;
+        }
+        if (g.length() >= 3) {
+            for (String o : options) {
+                String lo = o.toLowerCase(Locale.ROOT);
+                if (lo.contains(g) || g.contains(lo)) {
+                    return o;
+                }
+            }
+        }
+        return null;
+    }
+
+    /** Levenshtein distance. */
+    static int editDistance(String a, String b) {
+        int[] prev = new int[b.length() + 1];
+        int[] cur = new int[b.length() + 1];
+        for (int j = 0; j <= b.length(); j++) {
+            prev[j] = j;
+        }
+        for (int i = 1; i <= a.length(); i++) {
+            cur[0] = i;
+            for (int j = 1; j <= b.length(); j++) {
+                int sub = prev[j - 1] + (a.charAt(i - 1) == b.charAt(j - 1) ? 0 : 1);
+                cur[j] = Math.min(sub, Math.min(prev[j] + 1, cur[j - 1] + 1));
+            }
+            int[] t = prev;
+            prev = cur;
+            cur = t;
+        }
+        return prev[b.length()];
+    }
+
+    private static Map<String, String> ordered(String... kv) {
+        Map<String, String> m = new LinkedHashMap<>();
+        for (int i = 0; i < kv.length; i += 2) {
+            m.put(kv[i], kv[i + 1]);
+        }
+        return java.util.Collections.unmodifiableMap(m);
     }
 }

@@ -1,0 +1,162 @@
+package raylab.cli;
+
+import java.io.PrintWriter;
+import java.nio.file.Path;
+import java.util.concurrent.Callable;
+
+import picocli.CommandLine.Command;
+import picocli.CommandLine.Option;
+import picocli.CommandLine.Parameters;
+import picocli.CommandLine.Spec;
+import picocli.CommandLine.Model.CommandSpec;
+import raylab.light.PointLight;
+import raylab.material.BlinnPhong;
+import raylab.material.FlatColor;
+import raylab.material.Lambertian;
+import raylab.material.Material;
+import raylab.math.Color;
+import raylab.math.Vec3;
+import raylab.ray.IntersectionRecord;
+import raylab.ray.Ray;
+import raylab.render.Image;
+import raylab.render.Mode;
+import raylab.render.RenderPlan;
+import raylab.render.RenderStats;
+import raylab.render.Renderer;
+import raylab.render.ShadeListener;
+import raylab.render.Shader;
+import raylab.scene.Scene;
+import raylab.scene.SceneLoader;
+
+/** {@code raylab trace SCENE.json --pixel X Y}: the ray tree of one pixel, step by step. */
+@Command(name = "trace", mixinStandardHelpOptions = true,
+        description = {"Print the ray tree of one pixel: the eye ray, its hit, each light's shadow ray",
+            "and shading terms, and the final colour. Pixel (0, 0) is the top-left corner."})
+public final class TraceCommand implements Callable<Integer> {
+    @Spec
+    CommandSpec spec;
+
+    @Parameters(index = "0", paramLabel = "SCENE.json", description = "The scene file.")
+    Path scenePath;
+
+    @Option(names = "--pixel", arity = "2", required = true, paramLabel = "X Y",
+            description = "Column and row of the pixel, from the top-left corner.")
+    int[] pixel;
+
+    @Override
+    public Integer call() throws Exception {
+        PrintWriter out = spec.commandLine().getOut();
+        Scene scene = SceneLoader.load(scenePath);
+        int x = pixel[0];
+        int y = pixel[1];
+        if (x < 0 || y < 0 || x >= scene.width || y >= scene.height) {
+            throw UserError.badInput("pixel (" + x + ", " + y + ") is outside the " + scene.width + "x"
+                    + scene.height + " image of " + scenePath);
+        }
+        RenderPlan plan = new RenderPlan(scene);
+        Renderer renderer = new Renderer(scene, plan, Mode.FULL);
+        Shader shader = new Shader(scene, renderer.root(), plan, Mode.FULL);
+        out.printf("pixel (%d, %d) of %s (%dx%d)%n", x, y, scenePath, scene.width, scene.height);
+        if (scene.samplesPerPixel > 1) {
+            out.printf("  (the scene takes %d samples per pixel; this traces the ray through the pixel centre)%n",
+                    scene.samplesPerPixel);
+        }
+        Ray ray = scene.camera.rayThroughPixelCenter(x, y);
+        out.println("eye ray");
+        out.println("  p = " + ray.p + "   d = " + ray.d + "   t in [" + ray.tMin + ", " + ray.tMax + "]");
+        IntersectionRecord hit = new IntersectionRecord();
+        if (!renderer.root().intersect(hit, ray)) {
+            out.println("  no hit: background " + scene.background);
+            out.println(finalColour(scene.background));
+            return Main.OK;
+        }
+        out.printf("  hit \"%s\" at t = %s%n", hit.surface.name(), num(hit.t));
+        out.println("    point  x = " + hit.point);
+        Material m = hit.material;
+        out.println("    material \"" + m.name() + "\": " + describe(m));
+        shader.listen(new Printer(out));
+        Color c = shader.shade(ray, hit, new RenderStats());
+        out.println(finalColour(c));
+        return Main.OK;
+    }
+
+    private static String finalColour(Color c) {
+        int rgb = Image.toRgb8(c);
+        return String.format("colour L = %s  ->  8-bit sRGB (%d, %d, %d)%s", c, (rgb >> 16) & 0xFF,
+                (rgb >> 8) & 0xFF, rgb & 0xFF, c.isFinite() ? "" : "  NOT FINITE (drawn magenta)");
+    }
+
+    static String describe(Material m) {
+        if (m instanceof BlinnPhong b) {
+            return "Blinn-Phong, kd = " + b.kd + ", ks = " + b.ks + ", p = " + num(b.p) + ", ka = " + b.ka;
+        }
+        if (m instanceof Lambertian l) {
+            return "Lambertian, kd = " + l.kd + ", ka = " + l.ka;
+        }
+        if (m instanceof FlatColor f) {
+            return "flat colour " + f.color + " (ignores lights)";
+        }
+        return m.getClass().getSimpleName() + (m.isLit() ? "" : " (ignores lights)");
+    }
+
+    static String num(double v) {
+        return String.format("%.6g", v);
+    }
+
+    /** Prints each shading step as the shader takes it. */
+    private static final class Printer implements ShadeListener {
+        private final PrintWriter out;
+
+        Printer(PrintWriter out) {
+            this.out = out;
+        }
+
+        @Override
+        public void normal(Vec3 outward, Vec3 facing) {
+            out.println("    normal n = " + facing + (outward.equals(facing) ? "" : "  (outward normal "
+                    + outward + " flipped: the ray hits the back side)"));
+        }
+
+        @Override
+        public void ambient(Color term) {
+            out.println("  ambient  ka*Ia = " + term);
+        }
+
+        @Override
+        public void light(PointLight light, Vec3 l, double nDotL) {
+            out.printf("  light \"%s\" at %s, I = %s%n    l = %s   n.l = %s%n", light.name, light.position,
+                    light.intensity, l, num(nDotL));
+        }
+
+        @Override
+        public void skipped(PointLight light, String why) {
+            out.println("    skipped: " + why);
+        }
+
+        @Override
+        public void noShadowRay(PointLight light) {
+            out.println("    shadow ray: none traced (" + (light.castsShadows ? "the render plan needs none"
+                    : "this light casts no shadows") + ")");
+        }
+
+        @Override
+        public void shadow(PointLight light, boolean blocked, IntersectionRecord blocker) {
+            if (blocked) {
+                out.printf("    shadow ray: BLOCKED by \"%s\" at t = %s (t = 1 is the light): in shadow%n",
+                        blocker.surface == null ? "?" : blocker.surface.name(), num(blocker.t));
+            } else {
+                out.println("    shadow ray: clear, the light is visible");
+            }
+        }
+
+        @Override
+        public void diffuse(PointLight light, Color term) {
+            out.println("    diffuse  kd*I*max(0, n.l)     = " + term);
+        }
+
+        @Override
+        public void specular(PointLight light, Color term) {
+            out.println("    specular ks*I*max(0, n.h)^p   = " + term);
+        }
+    }
+}
