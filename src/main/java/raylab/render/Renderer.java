@@ -177,7 +177,7 @@ public final class Renderer {
         return shader.shade(ray, rec, stats);
     }
 
-    /** A seed that depends only on the pixel (and the scene's sample count). */
+    /** A seed that depends only on the pixel's coordinates. */
     static long pixelSeed(int x, int y) {
         long h = 0x9E3779B97F4A7C15L * (x + 1) + 0xC2B2AE3D27D4EB4FL * (y + 1);
         return h ^ (h >>> 31);

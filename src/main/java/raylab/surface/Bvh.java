@@ -30,6 +30,7 @@ public final class Bvh extends Surface {
     private int[] second = new int[64];
     private int axisOf[] = new int[64];
     private int nodes;
+    private int depth;
     private final BoundingBox box;
 
     public Bvh(List<? extends Surface> surfaces, String name) {
@@ -46,7 +47,7 @@ public final class Bvh extends Surface {
         for (int i = 0; i < n; i++) {
             order[i] = i;
         }
-        build(order, boxes, centroids, 0, n);
+        build(order, boxes, centroids, 0, n, 1);
         Surface[] sorted = new Surface[n];
         for (int i = 0; i < n; i++) {
             sorted[i] = prims[order[i]];
@@ -55,8 +56,9 @@ public final class Bvh extends Surface {
         box = n == 0 ? BoundingBox.EMPTY : nodeBox(0);
     }
 
-    private int build(Integer[] order, BoundingBox[] boxes, Vec3[] centroids, int lo, int hi) {
+    private int build(Integer[] order, BoundingBox[] boxes, Vec3[] centroids, int lo, int hi, int level) {
         int node = newNode();
+        depth = Math.max(depth, level);
         BoundingBox nb = BoundingBox.EMPTY;
         BoundingBox cb = BoundingBox.EMPTY;
         for (int i = lo; i < hi; i++) {
@@ -127,8 +129,10 @@ public final class Bvh extends Surface {
         }
         count[node] = 0;
         axisOf[node] = axis;
-        build(order, boxes, centroids, lo, mid);
-        second[node] = build(order, boxes, centroids, mid, hi);
+        build(order, boxes, centroids, lo, mid, level + 1);
+        // Build first, then store: build may grow (reallocate) the arrays.
+        int rightChild = build(order, boxes, centroids, mid, hi, level + 1);
+        second[node] = rightChild;
         return node;
     }
 
@@ -220,7 +224,7 @@ public final class Bvh extends Surface {
         double iy = 1.0 / ray.d.y;
         double iz = 1.0 / ray.d.z;
         boolean[] negative = {ix < 0, iy < 0, iz < 0};
-        int[] stack = new int[64];
+        int[] stack = new int[depth + 1]; // at most one pending node per level
         int top = 0;
         int node = 0;
         boolean hit = false;
