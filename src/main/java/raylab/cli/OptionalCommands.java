@@ -7,7 +7,8 @@ import picocli.CommandLine;
  * out). They are looked up by name, so the command line works in both trees.
  */
 final class OptionalCommands {
-    static final String[] NAMES = {};
+    static final String[] NAMES = {"raylab.grade.GradeCommand", "raylab.grade.ReferenceCommand",
+        "raylab.grade.BundleCommand"};
 
     private OptionalCommands() {
     }
