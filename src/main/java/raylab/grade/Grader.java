@@ -126,10 +126,13 @@ public final class Grader {
         Map<String, GradeReport.Milestone> results = new LinkedHashMap<>();
         ExecutorService pool = Executors.newFixedThreadPool(Math.max(1, options.parallel()));
         try {
+            // The scenes without their reference images: student code cannot copy a reference.
+            Path scenesCopy = work.resolve("scenes");
+            copyScenes(root.resolve("scenes"), scenesCopy);
             Sandbox.readableByAll(work);
             Map<String, Future<GradeReport.Milestone>> futures = new LinkedHashMap<>();
             for (Assignment a : selected) {
-                futures.put(a.id(), pool.submit(() -> gradeMilestone(a, sub, setup, work, sandbox, ignored)));
+                futures.put(a.id(), pool.submit(() -> gradeMilestone(a, sub, setup, work, scenesCopy, sandbox, ignored)));
             }
             for (Assignment a : selected) {
                 try {
@@ -148,13 +151,30 @@ public final class Grader {
                 (System.nanoTime() - t0) / 1e9);
     }
 
+    private static void copyScenes(Path from, Path to) throws IOException {
+        try (Stream<Path> s = Files.walk(from)) {
+            for (Path p : (Iterable<Path>) s::iterator) {
+                Path rel = from.relativize(p);
+                if (rel.toString().equals("reference") || rel.startsWith("reference")) {
+                    continue;
+                }
+                Path t = to.resolve(rel.toString());
+                if (Files.isDirectory(p)) {
+                    Files.createDirectories(t);
+                } else if (Files.isRegularFile(p)) {
+                    Files.copy(p, t);
+                }
+            }
+        }
+    }
+
     /** A report for a grading that could not run at all: score 0 and the reason. */
     public static GradeReport failed(String why, double seconds) {
         return new GradeReport(List.of(), List.of(), List.of(), List.of("grading failed: " + why), seconds);
     }
 
     private GradeReport.Milestone gradeMilestone(Assignment a, Submission sub, GraderSetup setup, Path work,
-            Sandbox sandbox, List<String> ignored) throws IOException {
+            Path scenesCopy, Sandbox sandbox, List<String> ignored) throws IOException {
         Path mdir = work.resolve(a.id());
         Files.createDirectories(mdir);
         List<String> notes = new ArrayList<>();
@@ -227,9 +247,7 @@ public final class Grader {
         }
         tests.addAll(scoreTests(a, setup, expected, got));
         // Scenes.
-        for (Assignment.GradedScene sc : a.scenes()) {
-            tests.add(gradeScene(a, sc, overlay, below, mdir, sandbox));
-        }
+        tests.addAll(gradeScenes(a, overlay, below, setup, mdir, scenesCopy, sandbox));
         sandbox.killAll();
         return new GradeReport.Milestone(a.id(), a.title(), notes, tests);
     }
@@ -425,54 +443,100 @@ public final class Grader {
         return invocation == null ? base : "[" + invocation + "] " + base;
     }
 
-    private GradeReport.Test gradeScene(Assignment a, Assignment.GradedScene sc, Path overlay, List<Path> below,
-            Path mdir, Sandbox sandbox) throws IOException {
+    /** Renders the milestone's scenes in one child JVM and compares each with its reference. */
+    private List<GradeReport.Test> gradeScenes(Assignment a, Path overlay, List<Path> below, GraderSetup setup,
+            Path mdir, Path scenesCopy, Sandbox sandbox) throws IOException {
+        List<GradeReport.Test> out = new ArrayList<>();
+        if (a.scenes().isEmpty()) {
+            return out;
+        }
         Path root = options.root().toAbsolutePath();
-        String name = "scene " + Path.of(sc.scene()).getFileName();
-        long t0 = System.nanoTime();
-        Path sceneFile = root.resolve(sc.scene());
-        Path refFile = referenceImage(sc);
-        byte[] refBytes = refFile == null ? null : Files.readAllBytes(refFile);
-        Path run = Files.createDirectories(mdir.resolve("render-" + Path.of(sc.scene()).getFileName()));
+        Path run = Files.createDirectories(mdir.resolve("render"));
         sandbox.giveTo(run);
-        Path png = run.resolve("student.png");
+        List<String> cmd = new ArrayList<>(sandbox.wrapper());
         List<Path> cp = new ArrayList<>();
+        cp.add(setup.tests);
         cp.add(overlay);
         cp.addAll(below);
-        MilestoneBuild.RenderOutcome o = MilestoneBuild.renderInChild(cp, sceneFile, png, options.sceneLimit(),
-                options.sceneHeapMb(), run, sandbox.wrapper());
-        sandbox.killAll();
-        long ms = (System.nanoTime() - t0) / 1_000_000;
-        String msg;
-        GradeReport.Images images = null;
-        boolean passed = false;
-        if (refBytes == null) {
-            msg = "grader setup problem: no reference image " + sc.reference();
-        } else if (o.timedOut()) {
-            msg = "the render took longer than " + options.sceneLimit().toSeconds() + " s and was stopped (an endless loop?)";
-            images = new GradeReport.Images(null, refBytes, null, "");
-        } else if (o.exitStatus() != 0 || !Files.isRegularFile(png)) {
-            msg = "the render failed (exit status " + o.exitStatus() + "): "
-                    + (o.message().isBlank() ? "no message" : o.message().replaceFirst("^raylab: ", ""));
-            images = new GradeReport.Images(null, refBytes, null, "");
-        } else {
-            byte[] mine = Files.readAllBytes(png);
-            try {
-                BufferedImage img = PngFiles.read(png);
-                BufferedImage ref = PngFiles.read(refFile);
-                ImageCompare.Result c = ImageCompare.compare(img, ref);
-                passed = c.matches(sc.tolerance());
-                String metric = c.summary() + "; allowed: " + String.format("%.3f%%", 100 * sc.tolerance());
-                msg = passed ? "" : "the image differs from the reference: " + metric
-                        + " (open report.html to see where)";
-                images = new GradeReport.Images(mine, refBytes, png(c.diff()), metric);
-            } catch (IOException | IllegalArgumentException e) {
-                msg = "the rendered image could not be compared: " + e.getMessage();
-                images = new GradeReport.Images(null, refBytes, null, "");
-            }
+        cmd.addAll(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
+                "-Xmx" + options.sceneHeapMb() + "m", "-Djava.awt.headless=true", "-cp",
+                String.join(java.io.File.pathSeparator, cp.stream().map(Path::toString).toList()),
+                "raylab.hidden.RenderMany"));
+        List<Path> pngs = new ArrayList<>();
+        for (int i = 0; i < a.scenes().size(); i++) {
+            Assignment.GradedScene sc = a.scenes().get(i);
+            Path scene = scenesCopy.resolve(root.resolve("scenes").relativize(root.resolve(sc.scene())).toString());
+            Path png = run.resolve("scene" + i + ".png");
+            cmd.add(scene.toString());
+            cmd.add(png.toString());
+            pngs.add(png);
         }
-        return new GradeReport.Test(a.id(), name, Kind.SCENE, sc.points(), passed ? sc.points() : 0, passed, msg, "",
-                "visible", ms, sc.scene(), images);
+        long t0 = System.nanoTime();
+        ProcessBuilder pb = new ProcessBuilder(cmd).directory(run.toFile())
+                .redirectOutput(ProcessBuilder.Redirect.DISCARD).redirectError(ProcessBuilder.Redirect.DISCARD);
+        pb.environment().keySet().removeIf(k -> k.startsWith("JAVA_TOOL") || k.startsWith("_JAVA_OPTIONS")
+                || k.equals("JDK_JAVA_OPTIONS"));
+        Process p = pb.start();
+        Duration limit = options.sceneLimit().multipliedBy(a.scenes().size());
+        boolean timedOut = false;
+        try {
+            if (!p.waitFor(limit.toMillis(), java.util.concurrent.TimeUnit.MILLISECONDS)) {
+                timedOut = true;
+            }
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+            timedOut = true;
+        }
+        p.descendants().forEach(ProcessHandle::destroyForcibly);
+        p.destroyForcibly();
+        try {
+            p.waitFor(5, java.util.concurrent.TimeUnit.SECONDS);
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+        }
+        sandbox.killAll();
+        long ms = (System.nanoTime() - t0) / 1_000_000 / a.scenes().size();
+        for (int i = 0; i < a.scenes().size(); i++) {
+            Assignment.GradedScene sc = a.scenes().get(i);
+            String name = "scene " + Path.of(sc.scene()).getFileName();
+            Path png = pngs.get(i);
+            Path refFile = referenceImage(sc);
+            byte[] refBytes = refFile == null ? null : Files.readAllBytes(refFile);
+            Path err = Path.of(png + ".err");
+            String errLine = Files.isRegularFile(err) ? GraderSetup.firstLine(new String(
+                    Files.readAllBytes(err), java.nio.charset.StandardCharsets.UTF_8)).replaceFirst("^raylab: ", "") : "";
+            String msg;
+            GradeReport.Images images = null;
+            boolean passed = false;
+            if (refBytes == null) {
+                msg = "grader setup problem: no reference image " + sc.reference();
+            } else if (!Files.isRegularFile(png) || Files.isRegularFile(err)) {
+                msg = !errLine.isEmpty() ? "the render failed: " + errLine
+                        : timedOut ? "the renders took longer than " + limit.toSeconds()
+                                + " s and were stopped (an endless loop?)"
+                        : "no image was rendered (the render JVM ended early: System.exit, a crash or out of memory)";
+                images = new GradeReport.Images(null, refBytes, null, "");
+            } else {
+                byte[] mine = Files.readAllBytes(png);
+                try {
+                    BufferedImage img = PngFiles.read(png);
+                    BufferedImage ref = PngFiles.read(refFile);
+                    ImageCompare.Result c = ImageCompare.compare(img, ref);
+                    passed = c.matches(sc.tolerance());
+                    String metric = c.summary() + "; allowed: " + String.format(java.util.Locale.ROOT, "%.3f%%",
+                            100 * sc.tolerance());
+                    msg = passed ? "" : "the image differs from the reference: " + metric
+                            + " (open report.html to see where)";
+                    images = new GradeReport.Images(mine, refBytes, png(c.diff()), metric);
+                } catch (IOException | RuntimeException e) {
+                    msg = "the rendered image could not be compared: " + e.getMessage();
+                    images = new GradeReport.Images(null, refBytes, null, "");
+                }
+            }
+            out.add(new GradeReport.Test(a.id(), name, Kind.SCENE, sc.points(), passed ? sc.points() : 0, passed, msg,
+                    "", "visible", ms, sc.scene(), images));
+        }
+        return out;
     }
 
     /** The reference PNG, rendered with the reference solution (trusted) if it is not there yet. */

@@ -106,8 +106,8 @@ public final class Reports {
                 Map<String, Object> j = new LinkedHashMap<>();
                 j.put("name", m.id() + ": " + t.name() + " (" + t.kind().label() + ")");
                 j.put("number", mi + "." + ti);
-                j.put("score", GradeReport.round(t.score()));
-                j.put("max_score", GradeReport.round(t.maxScore()));
+                j.put("score", t.score());
+                j.put("max_score", t.maxScore());
                 j.put("status", t.passed() ? "passed" : "failed");
                 String out = t.passed() ? "" : t.message();
                 if (t.images() != null && !t.images().metric().isEmpty() && t.passed()) {
