@@ -144,6 +144,7 @@ public final class Grader {
             }
         } finally {
             pool.shutdownNow();
+            // Milestones run side by side as the same user: processes they left are killed here, at the end.
             sandbox.killAll();
             GraderSetup.deleteTree(work);
         }
@@ -237,7 +238,6 @@ public final class Grader {
             cp.addAll(below);
             TestLauncher.Outcome o = TestLauncher.run(cp, setup.tests, List.of(), setup.testClasses.get(a.id()),
                     options.limits(), run, expected, sandbox.wrapper());
-            sandbox.killAll();
             for (TestResult r : o.results()) {
                 got.put(r.id(), r);
             }
@@ -248,7 +248,6 @@ public final class Grader {
         tests.addAll(scoreTests(a, setup, expected, got));
         // Scenes.
         tests.addAll(gradeScenes(a, overlay, below, setup, mdir, scenesCopy, sandbox));
-        sandbox.killAll();
         return new GradeReport.Milestone(a.id(), a.title(), notes, tests);
     }
 
@@ -494,7 +493,6 @@ public final class Grader {
         } catch (InterruptedException e) {
             Thread.currentThread().interrupt();
         }
-        sandbox.killAll();
         long ms = (System.nanoTime() - t0) / 1_000_000 / a.scenes().size();
         for (int i = 0; i < a.scenes().size(); i++) {
             Assignment.GradedScene sc = a.scenes().get(i);
@@ -554,7 +552,7 @@ public final class Grader {
                 Files.createDirectories(cached.getParent());
                 Path tmp = Files.createTempDirectory(cached.getParent(), "ref");
                 Path out = tmp.resolve("ref.png");
-                MilestoneBuild.RenderOutcome o = MilestoneBuild.renderInChild(JavaBuild.ownClassPath(),
+                MilestoneBuild.RenderOutcome o = MilestoneBuild.renderInChild(GraderSetup.ownClassPath(),
                         root.resolve(sc.scene()), out, Duration.ofMinutes(5), 1024, tmp);
                 if (o.exitStatus() != 0 || !Files.isRegularFile(out)) {
                     GraderSetup.deleteTree(tmp);

@@ -72,9 +72,14 @@ final class GraderSetup {
         this.libraries = libraries;
     }
 
+    /** This JVM's class path as absolute paths (children run in other directories). */
+    static List<Path> ownClassPath() {
+        return JavaBuild.ownClassPath().stream().map(p -> p.toAbsolutePath().normalize()).toList();
+    }
+
     /** The class path entry holding raylab's own classes (a directory or the shaded jar). */
     static Path codeSource() throws IOException {
-        for (Path p : JavaBuild.ownClassPath()) {
+        for (Path p : GraderSetup.ownClassPath()) {
             if (Files.isDirectory(p) ? Files.exists(p.resolve("raylab/cli/Main.class")) : hasEntry(p, "raylab/cli/Main.class")) {
                 return p;
             }
@@ -119,7 +124,7 @@ final class GraderSetup {
             throws IOException {
         Path code = codeSource();
         List<Path> libs = new ArrayList<>();
-        for (Path p : JavaBuild.ownClassPath()) {
+        for (Path p : GraderSetup.ownClassPath()) {
             if (!p.equals(code) && !p.getFileName().toString().equals("test-classes")) {
                 libs.add(p.toAbsolutePath());
             }
@@ -214,13 +219,13 @@ final class GraderSetup {
         }
         List<Path> sourcePath = Stream.of(root.resolve("src/test/java"), root.resolve("grader/tests"), gen)
                 .filter(Files::isDirectory).toList();
-        compileWithSourcePath(testSources, sourcePath, JavaBuild.ownClassPath(), t.tests);
+        compileWithSourcePath(testSources, sourcePath, GraderSetup.ownClassPath(), t.tests);
         // List the tests by running them on the reference (trusted code): dynamic and
         // parameterized tests appear only when run.
         Path work = Files.createTempDirectory(tmp, "run");
         List<Path> cp = new ArrayList<>();
         cp.add(t.tests);
-        cp.addAll(JavaBuild.ownClassPath());
+        cp.addAll(GraderSetup.ownClassPath());
         List<String> all = classesOf.values().stream().flatMap(List::stream).toList();
         TestLauncher.Outcome o = TestLauncher.run(cp, t.tests, List.of(), all,
                 new TestLauncher.Limits(1024, Duration.ofMinutes(10), 120, 4096), work, List.of());
