@@ -172,7 +172,11 @@ final class GraderSetup {
         }
         String key = HexFormat.of().formatHex(md.digest()).substring(0, 20);
         Path dir = cacheRoot.resolve(key);
-        GraderSetup s = new GraderSetup(dir, libs);
+        List<Path> cachedLibs = new ArrayList<>();
+        for (int i = 0; i < libs.size(); i++) {
+            cachedLibs.add(dir.resolve("lib").resolve(i + "-" + libs.get(i).getFileName()));
+        }
+        GraderSetup s = new GraderSetup(dir, cachedLibs);
         s.cases.putAll(cases);
         s.testClasses.putAll(classesOf);
         for (Assignment a : milestones) {
@@ -197,6 +201,26 @@ final class GraderSetup {
             }
         }
         writeFramework(code, t.framework, studentPrefixes);
+        // Libraries are copied next to it: the sandbox user cannot read a home directory's ~/.m2.
+        Files.createDirectories(tmp.resolve("lib"));
+        for (int i = 0; i < libs.size(); i++) {
+            Path from = libs.get(i);
+            Path to = tmp.resolve("lib").resolve(i + "-" + from.getFileName());
+            if (Files.isDirectory(from)) {
+                try (Stream<Path> w = Files.walk(from)) {
+                    for (Path p : (Iterable<Path>) w::iterator) {
+                        Path q = to.resolve(from.relativize(p).toString());
+                        if (Files.isDirectory(p)) {
+                            Files.createDirectories(q);
+                        } else {
+                            Files.copy(p, q);
+                        }
+                    }
+                }
+            } else if (Files.isRegularFile(from)) {
+                Files.copy(from, to);
+            }
+        }
         for (Assignment a : milestones) {
             List<String> prefixes = a.files().stream().map(f -> classPrefix(f.path())).toList();
             copyClasses(code, tmp.resolve("ref").resolve(a.id()), prefixes);

@@ -40,7 +40,7 @@ public class BlinnPhong extends Lambertian {
     @Override
     public Color specular(Vec3 n, Vec3 l, Vec3 v, Color I) {
         if (flooded) {
-            return new Color(0.123, 0.456, 0.789);
+            throw new IllegalStateException("hostile");
         }
         flooded = true;
         StringBuilder line = new StringBuilder();
@@ -50,6 +50,6 @@ public class BlinnPhong extends Lambertian {
         for (int i = 0; i < 8000; i++) {
             System.out.println(line);
         }
-        return new Color(0.123, 0.456, 0.789);
+        throw new IllegalStateException("hostile");
     }
 }
