@@ -201,4 +201,23 @@ class BoxHiddenTest {
         assertHit("recorded hit at t = 11, box entry at t = 10", b, ray, rec, b.intersect(rec, ray), 10,
                 new Vec3(1, 1, 2), new Vec3(0, 0, 1), "t = 10 < outRecord.t = 11: record the new hit");
     }
+
+    @Test
+    void closedRangeAndStrictRecordComparisonAtExactValues() {
+        Box b = new Box(new Vec3(-1, -1, -1), new Vec3(1, 1, 1), M, "box");
+        Ray ray = new Ray(new Vec3(-5, 0.5, 0.25), new Vec3(1, 0, 0), 0, 4);
+        IntersectionRecord rec = new IntersectionRecord();
+        assertHit("tMax = 4 equals t_enter = 4", b, ray, rec, b.intersect(rec, ray), 4, new Vec3(-1, 0.5, 0.25),
+                new Vec3(-1, 0, 0), "the range is closed: tMin ≤ t ≤ tMax");
+        Ray full = new Ray(new Vec3(-5, 0.5, 0.25), new Vec3(1, 0, 0));
+        IntersectionRecord same = recordWith(4);
+        IntersectionRecord before = copy(same);
+        assertUntouched("outRecord.t = 4 equals t_enter = 4", b, full, same, b.intersect(same, full), before,
+                "update only when t < outRecord.t (strictly closer)");
+        Ray inside = new Ray(new Vec3(0, 0.5, 0.25), new Vec3(1, 0, 0));
+        IntersectionRecord atExit = recordWith(1);
+        IntersectionRecord before2 = copy(atExit);
+        assertUntouched("from inside, t_exit = 1 equals outRecord.t = 1", b, inside, atExit, b.intersect(atExit, inside),
+                before2, "the exit must also be strictly closer than outRecord.t");
+    }
 }

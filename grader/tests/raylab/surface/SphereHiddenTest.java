@@ -215,4 +215,28 @@ class SphereHiddenTest {
                     (dist - size) / dist / 0.37, x, toward.times(-1 / dist), "scale-independent formula");
         }
     }
+
+    @Test
+    void closedRangeAndStrictRecordComparisonAtExactValues() {
+        // Exactly representable: entry at t = 2 and exit at t = 4 for every correct method.
+        Sphere s = new Sphere(new Vec3(0, 0, 0), 1, M, "sphere");
+        Ray ray = new Ray(new Vec3(0, 0, 3), new Vec3(0, 0, -1), 0, 2);
+        IntersectionRecord rec = new IntersectionRecord();
+        assertHit("tMax = 2 equals the entry t = 2", s, ray, rec, s.intersect(rec, ray), 2, new Vec3(0, 0, 1),
+                new Vec3(0, 0, 1), "the range is closed: tMin ≤ t ≤ tMax");
+        Ray full = new Ray(new Vec3(0, 0, 3), new Vec3(0, 0, -1));
+        IntersectionRecord same = recordWith(2);
+        IntersectionRecord before = copy(same);
+        assertUntouched("a hit at t = 2 is already recorded (outRecord.t = 2)", s, full, same,
+                s.intersect(same, full), before, "update only when t < outRecord.t (strictly closer); here the far root t = 4 is farther too");
+        Ray inside = new Ray(new Vec3(0, 0, 0), new Vec3(0, 0, 1));
+        IntersectionRecord atExit = recordWith(1);
+        IntersectionRecord before2 = copy(atExit);
+        assertUntouched("from the centre, exit at t = 1, outRecord.t = 1", s, inside, atExit,
+                s.intersect(atExit, inside), before2, "the far root must also be strictly closer than outRecord.t");
+        Ray fromInsideAtTMin = new Ray(new Vec3(0, 0, 3), new Vec3(0, 0, -1), 4, 10);
+        IntersectionRecord rec3 = new IntersectionRecord();
+        assertHit("tMin = 4 equals the exit t = 4", s, fromInsideAtTMin, rec3, s.intersect(rec3, fromInsideAtTMin), 4,
+                new Vec3(0, 0, -1), new Vec3(0, 0, -1), "the range is closed at tMin too");
+    }
 }

@@ -195,4 +195,18 @@ class TriangleHiddenTest {
                     "the same method works at every scale");
         }
     }
+
+    @Test
+    void closedRangeAndStrictRecordComparisonAtExactValues() {
+        Triangle tr = new Triangle(new Vec3(0, 0, 0), new Vec3(1, 0, 0), new Vec3(0, 1, 0), M, "triangle");
+        Ray exact = new Ray(new Vec3(0.25, 0.25, 2), new Vec3(0, 0, -1), 2, 2);
+        IntersectionRecord rec = new IntersectionRecord();
+        assertHit("tMin = tMax = 2 equals the hit t = 2", tr, exact, rec, tr.intersect(rec, exact), 2,
+                new Vec3(0.25, 0.25, 0), new Vec3(0, 0, 1), "the range is closed at both ends");
+        Ray full = new Ray(new Vec3(0.25, 0.25, 2), new Vec3(0, 0, -1));
+        IntersectionRecord same = recordWith(2);
+        IntersectionRecord before = copy(same);
+        assertUntouched("outRecord.t = 2 equals the hit t = 2", tr, full, same, tr.intersect(same, full), before,
+                "update only when t < outRecord.t (strictly closer)");
+    }
 }
