@@ -109,6 +109,12 @@ public final class Grader {
         });
         GraderSetup setup = GraderSetup.prepare(root, selected, options.cacheDir().toAbsolutePath(), log);
         notes.addAll(setup.notes);
+        if (sandbox.active() && !traversableByAll(setup.dir)) {
+            String w = "sandbox: the grader cache " + setup.dir + " is not readable by " + sandbox.user()
+                    + " (a parent directory is not world-executable): student code cannot run; use --cache on a readable path";
+            notes.add(w);
+            log.accept(w);
+        }
 
         Submission read;
         try {
@@ -150,6 +156,19 @@ public final class Grader {
         }
         return new GradeReport(List.copyOf(results.values()), accepted, ignored, notes,
                 (System.nanoTime() - t0) / 1e9);
+    }
+
+    private static boolean traversableByAll(Path dir) {
+        try {
+            for (Path p = dir.toAbsolutePath(); p != null; p = p.getParent()) {
+                if (!Files.getPosixFilePermissions(p).contains(java.nio.file.attribute.PosixFilePermission.OTHERS_EXECUTE)) {
+                    return false;
+                }
+            }
+            return true;
+        } catch (IOException | UnsupportedOperationException e) {
+            return true;
+        }
     }
 
     private static void copyScenes(Path from, Path to) throws IOException {
