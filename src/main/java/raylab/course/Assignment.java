@@ -33,7 +33,7 @@ public record Assignment(
         @JsonProperty(required = true) Tests tests,
         List<GradedScene> scenes,
         List<String> cases,
-        boolean optional,
+        Boolean optional,
         Path folder) {
 
     public Assignment {
@@ -41,6 +41,7 @@ public record Assignment(
         scenes = scenes == null ? List.of() : List.copyOf(scenes);
         cases = cases == null ? List.of() : List.copyOf(cases);
         files = List.copyOf(files);
+        optional = optional != null && optional; // absent means false
     }
 
     /** A copy that knows its folder. */

@@ -55,21 +55,43 @@ public final class Assignments {
             }
         }
         out.sort(Comparator.comparingInt(Assignment::order));
-        checkConsistent(out);
+        checkConsistent(projectRoot, out);
         return new Assignments(projectRoot, out);
     }
 
-    private static void checkConsistent(List<Assignment> list) throws IOException {
+    /** The points of a milestone's data-driven cases (each case's "points", default 1). */
+    public static double casePoints(Path projectRoot, Assignment a) throws IOException {
+        double sum = 0;
+        for (String rel : a.cases()) {
+            Path f = projectRoot.resolve(a.folder()).resolve(rel);
+            if (!Files.isRegularFile(f)) {
+                throw new IOException(a.folder() + "/assignment.json: case file " + rel + " does not exist");
+            }
+            com.fasterxml.jackson.databind.JsonNode n;
+            try {
+                n = JSON.readTree(f.toFile());
+            } catch (JsonProcessingException e) {
+                throw new IOException(f + ": not valid JSON: " + e.getOriginalMessage().split("\n")[0]);
+            }
+            for (com.fasterxml.jackson.databind.JsonNode c : n.isArray() ? n : List.of(n)) {
+                sum += c.path("points").asDouble(1);
+            }
+        }
+        return sum;
+    }
+
+    private static void checkConsistent(Path projectRoot, List<Assignment> list) throws IOException {
         List<String> ids = list.stream().map(Assignment::id).toList();
         for (Assignment a : list) {
             if (ids.indexOf(a.id()) != ids.lastIndexOf(a.id())) {
                 throw new IOException("two assignments have the id '" + a.id() + "'");
             }
-            int sum = a.tests().visiblePoints() + a.tests().hiddenPoints()
-                    + a.scenes().stream().mapToInt(Assignment.GradedScene::points).sum();
-            if (sum != a.points()) {
+            double sum = a.tests().visiblePoints() + a.tests().hiddenPoints()
+                    + a.scenes().stream().mapToInt(Assignment.GradedScene::points).sum()
+                    + casePoints(projectRoot, a);
+            if (Math.abs(sum - a.points()) > 1e-9) {
                 throw new IOException(a.folder() + "/assignment.json: points is " + a.points()
-                        + " but visiblePoints + hiddenPoints + scene points add up to " + sum);
+                        + " but visiblePoints + hiddenPoints + scene points + case points add up to " + sum);
             }
             for (String r : a.requires()) {
                 if (!ids.contains(r)) {

@@ -70,11 +70,18 @@ public final class MilestoneBuild {
      */
     public static RenderOutcome renderInChild(List<Path> classPath, Path scene, Path out, Duration limit,
             int heapMegabytes, Path workDir) throws IOException {
+        return renderInChild(classPath, scene, out, limit, heapMegabytes, workDir, List.of());
+    }
+
+    /** As above, with the child's command line prefixed by {@code wrapper} (empty for none). */
+    public static RenderOutcome renderInChild(List<Path> classPath, Path scene, Path out, Duration limit,
+            int heapMegabytes, Path workDir, List<String> wrapper) throws IOException {
         String java = Path.of(System.getProperty("java.home"), "bin", "java").toString();
-        List<String> cmd = List.of(java, "-Xmx" + heapMegabytes + "m", "-Djava.awt.headless=true", "-cp",
+        List<String> cmd = new ArrayList<>(wrapper);
+        cmd.addAll(List.of(java, "-Xmx" + heapMegabytes + "m", "-Djava.awt.headless=true", "-cp",
                 String.join(File.pathSeparator, classPath.stream().map(Path::toString).toList()),
                 "raylab.cli.Main", "render", scene.toAbsolutePath().toString(), "-o", out.toAbsolutePath().toString(),
-                "--quiet", "--threads", "2");
+                "--quiet", "--threads", "2"));
         Path err = Files.createTempFile(workDir, "render", ".err");
         Process p = new ProcessBuilder(cmd).directory(workDir.toFile())
                 .redirectOutput(ProcessBuilder.Redirect.DISCARD).redirectError(err.toFile()).start();

@@ -118,6 +118,12 @@ public final class SolutionRegions {
                 }
             }
             next = r.endLine();
+            // A region removed entirely between two blank lines would leave two in a row.
+            boolean removed = !keep.contains(r.milestone()) && r.stub().isEmpty();
+            if (removed && next < lines.length && lines[next].isBlank()
+                    && (sb.length() < 2 || sb.charAt(sb.length() - 2) == '\n')) {
+                next++;
+            }
         }
         for (int k = next; k < lines.length; k++) {
             sb.append(lines[k]);

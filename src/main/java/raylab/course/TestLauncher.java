@@ -54,7 +54,7 @@ public final class TestLauncher {
      */
     public static List<TestResult> discover(List<Path> classPath, Path testClasses, List<String> tags,
             List<String> classes, Path workDir) throws IOException {
-        Outcome o = launch(classPath, testClasses, tags, classes, Limits.DEFAULT, workDir, true, List.of());
+        Outcome o = launch(classPath, testClasses, tags, classes, Limits.DEFAULT, workDir, true, List.of(), List.of());
         if (!o.finished()) {
             throw new IOException("test discovery failed: " + o.problem());
         }
@@ -67,13 +67,24 @@ public final class TestLauncher {
      */
     public static Outcome run(List<Path> classPath, Path testClasses, List<String> tags, List<String> classes,
             Limits limits, Path workDir, List<TestResult> expected) throws IOException {
-        return launch(classPath, testClasses, tags, classes, limits, workDir, false, expected);
+        return launch(classPath, testClasses, tags, classes, limits, workDir, false, expected, List.of());
+    }
+
+    /**
+     * As {@link #run}, with the child's command line prefixed by {@code wrapper} (for example
+     * {@code setpriv --reuid=... --} to run it as an unprivileged user); empty for none.
+     */
+    public static Outcome run(List<Path> classPath, Path testClasses, List<String> tags, List<String> classes,
+            Limits limits, Path workDir, List<TestResult> expected, List<String> wrapper) throws IOException {
+        return launch(classPath, testClasses, tags, classes, limits, workDir, false, expected, wrapper);
     }
 
     private static Outcome launch(List<Path> classPath, Path testClasses, List<String> tags, List<String> classes,
-            Limits limits, Path workDir, boolean list, List<TestResult> expected) throws IOException {
+            Limits limits, Path workDir, boolean list, List<TestResult> expected, List<String> wrapper)
+            throws IOException {
         String java = Path.of(System.getProperty("java.home"), "bin", "java").toString();
-        List<String> cmd = new ArrayList<>(List.of(java, "-Xmx" + limits.heapMegabytes() + "m", "-Xss1m",
+        List<String> cmd = new ArrayList<>(wrapper);
+        cmd.addAll(List.of(java, "-Xmx" + limits.heapMegabytes() + "m", "-Xss1m",
                 "-XX:+UseSerialGC", "-XX:TieredStopAtLevel=1", "-Djava.awt.headless=true",
                 "-Dfile.encoding=UTF-8", "-cp",
                 classPath.stream().map(Path::toString).collect(Collectors.joining(File.pathSeparator)),

@@ -41,6 +41,7 @@ public class BlinnPhong extends Lambertian {
         Vec3 h = v.plus(l).normalize();
         return ks.times(I).times(Math.pow(Math.max(0.0, n.dot(h)), p));
         // STUB
+        // // TODO(phong): h = (v + l) / ‖v + l‖, return ks * I * max(0, n·h)^p.
         // throw new NotImplemented("phong", "BlinnPhong.specular");
         // END SOLUTION
     }

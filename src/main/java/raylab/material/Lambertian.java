@@ -38,6 +38,7 @@ public class Lambertian extends Material {
         // BEGIN SOLUTION lambert
         return kd.times(I).times(Math.max(0.0, n.dot(l)));
         // STUB
+        // // TODO(lambert): return kd * I * max(0, n·l).
         // throw new NotImplemented("lambert", "Lambertian.diffuse");
         // END SOLUTION
     }

@@ -42,4 +42,35 @@ public final class Numerics {
         double offset = originOffset(x);
         return n.dot(w) >= 0 ? x.plus(n.times(offset)) : x.minus(n.times(offset));
     }
+
+    /**
+     * The largest finite coordinate magnitude of a box (0 for an empty or unbounded box): a
+     * bound on the coordinates from which any hit point in the scene is computed.
+     */
+    public static double magnitude(BoundingBox box) {
+        double m = Math.max(box.min.maxAbs(), box.max.maxAbs());
+        return box.isEmpty() || !Double.isFinite(m) ? 0 : m;
+    }
+
+    /** The relative size of the scene-aware offset: 2^-46, 64 to 128 units in the last place. */
+    public static final double SCENE_OFFSET_SCALE = 0x1p-46;
+
+    /**
+     * The scene-aware offset: 2^-46 times the larger of x's largest coordinate and the scene's
+     * magnitude ({@link #magnitude}), never less than {@link #MIN_OFFSET}. A hit point near the
+     * coordinate origin on a large triangle or sphere carries the rounding error of the large
+     * coordinates it was computed from, which the size of x alone does not show.
+     */
+    public static double originOffset(Vec3 x, double sceneMagnitude) {
+        return Math.max(MIN_OFFSET, Math.max(x.maxAbs(), sceneMagnitude) * SCENE_OFFSET_SCALE);
+    }
+
+    /**
+     * Moves x off the surface with unit normal n, to the side that w points into, by the
+     * scene-aware offset {@link #originOffset(Vec3, double)}.
+     */
+    public static Vec3 offsetRayOrigin(Vec3 x, Vec3 n, Vec3 w, double sceneMagnitude) {
+        double offset = originOffset(x, sceneMagnitude);
+        return n.dot(w) >= 0 ? x.plus(n.times(offset)) : x.minus(n.times(offset));
+    }
 }

@@ -36,10 +36,14 @@ public final class Shadows {
     public static boolean isShadowed(Surface scene, Vec3 x, Vec3 n, PointLight light,
             IntersectionRecord scratch) {
         // BEGIN SOLUTION shadows
-        Vec3 origin = Numerics.offsetRayOrigin(x, n, light.position.minus(x));
+        // Scale-aware offset: 64 to 128 ulps of the largest coordinate of x or of the scene,
+        // which bounds the rounding error of any hit point computed in this scene.
+        double magnitude = Numerics.magnitude(scene.boundingBox());
+        Vec3 origin = Numerics.offsetRayOrigin(x, n, light.position.minus(x), magnitude);
         Ray shadowRay = new Ray(origin, light.position.minus(origin), 0.0, 1.0);
         return scene.intersectsAny(shadowRay, scratch);
         // STUB
+        // // TODO(shadows): a shadow ray from just off x toward the light, t up to 1.
         // throw new NotImplemented("shadows", "Shadows.isShadowed");
         // END SOLUTION
     }

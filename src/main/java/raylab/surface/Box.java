@@ -93,6 +93,7 @@ public class Box extends Surface {
         outRecord.set(t, point, normal, this);
         return true;
         // STUB
+        // // TODO(box): t_enter = max of the slab entries, t_exit = min of the exits.
         // throw new NotImplemented("box", "Box.intersect");
         // END SOLUTION
     }

@@ -269,11 +269,7 @@ public final class Bvh extends Surface {
 
     @Override
     public int primitiveCount() {
-        int n = 0;
-        for (Surface s : prims) {
-            n += s.primitiveCount();
-        }
-        return n;
+        return Surface.primitiveCount(prims);
     }
 
     /** Number of nodes in the tree. */

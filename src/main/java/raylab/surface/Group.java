@@ -57,11 +57,7 @@ public final class Group extends Surface {
 
     @Override
     public int primitiveCount() {
-        int n = 0;
-        for (Surface s : members) {
-            n += s.primitiveCount();
-        }
-        return n;
+        return Surface.primitiveCount(members);
     }
 
     @Override

@@ -55,6 +55,15 @@ public abstract class Surface {
         return 1;
     }
 
+    /** The total primitive count of several surfaces. */
+    protected static int primitiveCount(Surface[] surfaces) {
+        int n = 0;
+        for (Surface s : surfaces) {
+            n += s.primitiveCount();
+        }
+        return n;
+    }
+
     /** Whether the surface is convex, so that it cannot cast a shadow on itself. */
     public boolean isConvex() {
         return false;

@@ -43,27 +43,79 @@ public class Triangle extends Surface {
     @Override
     public boolean intersect(IntersectionRecord outRecord, Ray ray) {
         // BEGIN SOLUTION triangle
+        // Watertight test (Woop, Benthin and Wald 2013; as in pbrt-v4's Triangle::Intersect).
         Vec3 n = b.minus(a).cross(c.minus(a));
-        double dn = ray.d.dot(n);
-        if (dn == 0) {
+        if (n.x == 0 && n.y == 0 && n.z == 0) {
+            return false; // degenerate: zero area
+        }
+        // Ray space: translate p to the origin, rotate the axes so that d's largest component is
+        // the third, shear so that d becomes (0, 0, 1). Every triangle sharing a vertex
+        // transforms it with the same operations, so shared edges stay shared, bit for bit.
+        int kz = largestAxis(ray.d);
+        int kx = (kz + 1) % 3;
+        int ky = (kx + 1) % 3;
+        double sx = -ray.d.get(kx) / ray.d.get(kz);
+        double sy = -ray.d.get(ky) / ray.d.get(kz);
+        double sz = 1 / ray.d.get(kz);
+        double[] aRay = toRaySpace(a, ray.p, kx, ky, kz, sx, sy, sz);
+        double[] bRay = toRaySpace(b, ray.p, kx, ky, kz, sx, sy, sz);
+        double[] cRay = toRaySpace(c, ray.p, kx, ky, kz, sx, sy, sz);
+        // 2D edge functions at the origin (where the ray pierces the xy plane). Kahan's
+        // difference of products with an FMA has a relative error below 2 ulps, so each sign is
+        // exact and a shared edge gets opposite signs (or zero) in its two triangles.
+        double e0 = differenceOfProducts(bRay[0], cRay[1], bRay[1], cRay[0]);
+        double e1 = differenceOfProducts(cRay[0], aRay[1], cRay[1], aRay[0]);
+        double e2 = differenceOfProducts(aRay[0], bRay[1], aRay[1], bRay[0]);
+        // Inside (or on an edge) when no two edge functions have opposite signs.
+        if ((e0 < 0 || e1 < 0 || e2 < 0) && (e0 > 0 || e1 > 0 || e2 > 0)) {
             return false;
         }
-        double t = a.minus(ray.p).dot(n) / dn;
+        double det = e0 + e1 + e2;
+        if (det == 0) {
+            return false; // the ray lies in the triangle's plane
+        }
+        // Barycentric coordinates b0, b1, b2 (weights of a, b, c) and t, from the sheared z.
+        double b0 = e0 / det;
+        double b1 = e1 / det;
+        double b2 = e2 / det;
+        double t = b0 * aRay[2] + b1 * bRay[2] + b2 * cRay[2];
         if (!ray.inRange(t) || t >= outRecord.t) {
             return false;
         }
-        Vec3 x = ray.evaluate(t);
-        if (b.minus(a).cross(x.minus(a)).dot(n) < 0
-                || c.minus(b).cross(x.minus(b)).dot(n) < 0
-                || a.minus(c).cross(x.minus(c)).dot(n) < 0) {
-            return false;
-        }
+        // The point from the barycentric coordinates lies closer to the triangle than p + t·d.
+        Vec3 x = a.times(b0).plus(b.times(b1)).plus(c.times(b2));
         outRecord.set(t, x, n.normalize(), this);
         return true;
         // STUB
+        // // TODO(triangle): hit the plane, then test the point against the three edges.
         // throw new NotImplemented("triangle", "Triangle.intersect");
         // END SOLUTION
     }
+
+    // BEGIN SOLUTION triangle
+    private static int largestAxis(Vec3 d) {
+        double x = Math.abs(d.x);
+        double y = Math.abs(d.y);
+        double z = Math.abs(d.z);
+        return x > y && x > z ? 0 : y > z ? 1 : 2;
+    }
+
+    /** Vertex v in ray space: v − p with axes permuted to (kx, ky, kz), then sheared. */
+    private static double[] toRaySpace(Vec3 v, Vec3 p, int kx, int ky, int kz, double sx,
+            double sy, double sz) {
+        double x = v.get(kx) - p.get(kx);
+        double y = v.get(ky) - p.get(ky);
+        double z = v.get(kz) - p.get(kz);
+        return new double[] {x + sx * z, y + sy * z, sz * z};
+    }
+
+    /** a·b − c·d accurate to 2 ulps (Kahan's algorithm): the FMA recovers c·d's rounding error. */
+    private static double differenceOfProducts(double a, double b, double c, double d) {
+        double cd = c * d;
+        double error = Math.fma(-c, d, cd);
+        return Math.fma(a, b, -cd) + error;
+    }
+    // END SOLUTION
 
     @Override
     public BoundingBox boundingBox() {

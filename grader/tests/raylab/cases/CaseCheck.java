@@ -1,0 +1,94 @@
+package raylab.cases;
+
+import static org.junit.jupiter.api.Assertions.fail;
+
+import com.fasterxml.jackson.databind.JsonNode;
+import com.fasterxml.jackson.databind.ObjectMapper;
+
+import raylab.material.FlatColor;
+import raylab.math.Color;
+import raylab.math.Vec3;
+import raylab.ray.IntersectionRecord;
+import raylab.ray.Ray;
+import raylab.surface.Box;
+import raylab.surface.Sphere;
+import raylab.surface.Surface;
+import raylab.surface.Triangle;
+
+/**
+ * Runs one data-driven case (a JSON object from an assignment's cases/ folder, format in
+ * grader/README.md): builds the surface and the ray, intersects, and compares with the expected
+ * hit or miss. The grader generates one JUnit test per case that calls {@link #check}.
+ */
+public final class CaseCheck {
+    private static final ObjectMapper JSON = new ObjectMapper();
+
+    private CaseCheck() {
+    }
+
+    public static void check(String caseJson) throws Exception {
+        JsonNode c = JSON.readTree(caseJson);
+        Surface s = surface(c.get("surface"));
+        JsonNode r = c.get("ray");
+        Ray ray = new Ray(vec(r.get("p")), vec(r.get("d")), num(r.get("tMin"), 0),
+                num(r.get("tMax"), Double.POSITIVE_INFINITY));
+        IntersectionRecord rec = new IntersectionRecord();
+        JsonNode prior = c.get("recordT");
+        if (prior != null && !prior.isNull()) {
+            rec.t = prior.asDouble();
+        }
+        double before = rec.t;
+        boolean hit = s.intersect(rec, ray);
+        JsonNode e = c.get("expect");
+        double tol = num(e.get("tolerance"), 1e-6);
+        String ctx = "\n  case: " + c.path("name").asText() + "\n  ray: " + ray + "\n  surface: " + c.get("surface")
+                + (c.hasNonNull("hint") ? "\n  hint: " + c.get("hint").asText() : "");
+        if (!e.path("hit").asBoolean()) {
+            if (hit || rec.t != before || rec.surface != null) {
+                fail("expected no hit, but intersect returned " + hit + " and the record is: " + rec + ctx);
+            }
+            return;
+        }
+        if (!hit) {
+            fail("expected a hit" + (e.has("t") ? " at t = " + e.get("t").asDouble() : "")
+                    + " but intersect returned false" + ctx);
+        }
+        if (e.has("t") && !(Math.abs(rec.t - e.get("t").asDouble()) <= tol * Math.max(1, Math.abs(e.get("t").asDouble())))) {
+            fail("expected t = " + e.get("t").asDouble() + " but the record has t = " + rec.t + ctx);
+        }
+        if (e.has("point")) {
+            Vec3 p = vec(e.get("point"));
+            if (rec.point == null || !(rec.point.minus(p).length() <= tol * Math.max(1, p.maxAbs()))) {
+                fail("expected the hit point " + p + " but the record has " + rec.point + ctx);
+            }
+        }
+        if (e.has("normal")) {
+            Vec3 n = vec(e.get("normal"));
+            if (rec.normal == null || !(rec.normal.minus(n).length() <= Math.max(tol, 1e-9))) {
+                fail("expected the unit normal " + n + " but the record has " + rec.normal + ctx);
+            }
+        }
+        if (rec.surface != s) {
+            fail("the record should name the surface that was hit, but names " + rec.surface + ctx);
+        }
+    }
+
+    static Surface surface(JsonNode s) {
+        FlatColor m = new FlatColor(Color.WHITE, "white");
+        String type = s.path("type").asText();
+        return switch (type) {
+            case "sphere" -> new Sphere(vec(s.get("center")), s.get("radius").asDouble(), m, "sphere");
+            case "box" -> new Box(vec(s.get("min")), vec(s.get("max")), m, "box");
+            case "triangle" -> new Triangle(vec(s.get("a")), vec(s.get("b")), vec(s.get("c")), m, "triangle");
+            default -> throw new IllegalArgumentException("unknown surface type '" + type + "'");
+        };
+    }
+
+    static Vec3 vec(JsonNode a) {
+        return new Vec3(a.get(0).asDouble(), a.get(1).asDouble(), a.get(2).asDouble());
+    }
+
+    static double num(JsonNode n, double dflt) {
+        return n == null || n.isNull() ? dflt : n.asDouble();
+    }
+}

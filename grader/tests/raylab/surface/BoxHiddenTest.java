@@ -1,0 +1,223 @@
+package raylab.surface;
+
+import static raylab.hidden.Hidden.M;
+import static raylab.hidden.Hidden.assertHit;
+import static raylab.hidden.Hidden.assertUntouched;
+import static raylab.hidden.Hidden.copy;
+import static raylab.hidden.Hidden.point;
+import static raylab.hidden.Hidden.recordWith;
+import static raylab.hidden.Hidden.scale;
+import static raylab.hidden.Hidden.uniform;
+import static raylab.hidden.Hidden.within;
+
+import java.util.SplittableRandom;
+
+import org.junit.jupiter.api.Tag;
+import org.junit.jupiter.api.Test;
+
+import raylab.hidden.Hidden;
+import raylab.math.Vec3;
+import raylab.ray.IntersectionRecord;
+import raylab.ray.Ray;
+
+/**
+ * Hidden tests of Box.intersect (grader only). Answers are built first: a point on a face (away
+ * from its edges), then a ray through it.
+ */
+@Tag("box")
+class BoxHiddenTest {
+    private static final int N = 200;
+
+    private static Box randomBox(SplittableRandom r) {
+        Vec3 lo = point(r, 20);
+        Vec3 size = new Vec3(uniform(r, 0.3, 6), uniform(r, 0.3, 6), uniform(r, 0.3, 6));
+        return new Box(lo, lo.plus(size), M, "box");
+    }
+
+    /** A point on face (axis, side) of the box, at least 10% of the face away from its edges. */
+    private static Vec3 onFace(SplittableRandom r, Box b, int axis, int side) {
+        double[] c = new double[3];
+        for (int k = 0; k < 3; k++) {
+            double lo = b.min.get(k);
+            double hi = b.max.get(k);
+            c[k] = k == axis ? (side > 0 ? hi : lo) : lo + (hi - lo) * uniform(r, 0.1, 0.9);
+        }
+        return new Vec3(c[0], c[1], c[2]);
+    }
+
+    private static Vec3 axisVector(int axis, double s) {
+        return new Vec3(axis == 0 ? s : 0, axis == 1 ? s : 0, axis == 2 ? s : 0);
+    }
+
+    @Test
+    void randomRaysFromOutsideEnterThroughTheRightFace() {
+        long seed = 0xb0c5L;
+        SplittableRandom r = Hidden.rng(seed);
+        for (int i = 0; i < N; i++) {
+            Box b = randomBox(r);
+            int axis = r.nextInt(3);
+            int side = r.nextBoolean() ? 1 : -1;
+            Vec3 n = axisVector(axis, side);
+            Vec3 x = onFace(r, b, axis, side);
+            Vec3 d = within(r, n.negate(), 0.3).times(scale(r));
+            double t = uniform(r, 0.5, 30) / d.length();
+            Ray ray = new Ray(x.minus(d.times(t)), d);
+            IntersectionRecord rec = new IntersectionRecord();
+            assertHit("random ray from outside #" + i + " (seed " + seed + ")", b, ray, rec, b.intersect(rec, ray),
+                    t, x, n, "t_enter = max of the slab entries, t_exit = min of the slab exits; "
+                            + "swap a slab's two t values when d has a negative component");
+        }
+    }
+
+    @Test
+    void randomRaysFromInsideLeaveThroughTheRightFace() {
+        long seed = 0x1b51deL;
+        SplittableRandom r = Hidden.rng(seed);
+        for (int i = 0; i < N; i++) {
+            Box b = randomBox(r);
+            Vec3 p = new Vec3(uniform(r, b.min.x, b.max.x), uniform(r, b.min.y, b.max.y), uniform(r, b.min.z, b.max.z));
+            p = b.min.plus(p.minus(b.min).times(0.9)).plus(b.max.minus(b.min).times(0.05));
+            int axis = r.nextInt(3);
+            int side = r.nextBoolean() ? 1 : -1;
+            Vec3 x = onFace(r, b, axis, side);
+            double k = scale(r);
+            Ray ray = new Ray(p, x.minus(p).times(k));
+            IntersectionRecord rec = new IntersectionRecord();
+            assertHit("random ray from inside #" + i + " (seed " + seed + ")", b, ray, rec, b.intersect(rec, ray),
+                    1 / k, x, axisVector(axis, side),
+                    "from inside, t_enter < 0: the hit is t_exit, with the normal of the face it leaves through");
+        }
+    }
+
+    @Test
+    void axisParallelRays() {
+        Box b = new Box(new Vec3(-1, -2, -3), new Vec3(1, 2, 3), M, "box");
+        for (int axis = 0; axis < 3; axis++) {
+            for (int side : new int[] {1, -1}) {
+                Vec3 d = axisVector(axis, -side * 0.25);
+                Vec3 offset = new Vec3(axis == 0 ? 0 : 0.3, axis == 1 ? 0 : -0.4, axis == 2 ? 0 : 0.5);
+                Vec3 p = offset.plus(axisVector(axis, side * 10));
+                Vec3 x = offset.plus(axisVector(axis, side * b.max.get(axis)));
+                Ray ray = new Ray(p, d);
+                IntersectionRecord rec = new IntersectionRecord();
+                assertHit("ray along axis " + axis, b, ray, rec, b.intersect(rec, ray),
+                        (10 - b.max.get(axis)) / 0.25, x, axisVector(axis, side),
+                        "a zero direction component means the ray is inside that slab for all t (or never)");
+                // The same ray moved outside another slab misses.
+                int other = (axis + 1) % 3;
+                Ray away = new Ray(p.plus(axisVector(other, 5)), d);
+                IntersectionRecord rec2 = new IntersectionRecord();
+                assertUntouched("ray along axis " + axis + " outside the slab of axis " + other, b, away, rec2,
+                        b.intersect(rec2, away), new IntersectionRecord(),
+                        "d = 0 on an axis whose slab does not contain p: no hit");
+            }
+        }
+    }
+
+    @Test
+    void raysPassingBesideTheBoxMiss() {
+        long seed = 0xbe5dL;
+        SplittableRandom r = Hidden.rng(seed);
+        for (int i = 0; i < N; i++) {
+            Box b = randomBox(r);
+            Vec3 size = b.max.minus(b.min);
+            // A line through a point outside a corner region, aimed parallel to a face diagonal so
+            // the slab intervals do not overlap.
+            Vec3 q = b.max.plus(new Vec3(size.x * uniform(r, 0.2, 1), size.y * uniform(r, 0.2, 1), 0));
+            Vec3 d = new Vec3(-uniform(r, 0.1, 1), uniform(r, 0.1, 1), uniform(r, -1, 1)).times(scale(r));
+            double back = uniform(r, 1, 10);
+            Ray ray = new Ray(q.minus(d.times(back)), d);
+            // q is beyond max in x and y; moving along d lowers x while raising y: both never inside together.
+            IntersectionRecord rec = new IntersectionRecord();
+            assertUntouched("ray beside the box #" + i + " (seed " + seed + ")", b, ray, rec, b.intersect(rec, ray),
+                    new IntersectionRecord(), "the ray misses when t_enter > t_exit");
+        }
+    }
+
+    @Test
+    void boxBehindTheOriginIsMissed() {
+        long seed = 0xbe4b0L;
+        SplittableRandom r = Hidden.rng(seed);
+        for (int i = 0; i < N; i++) {
+            Box b = randomBox(r);
+            int axis = r.nextInt(3);
+            int side = r.nextBoolean() ? 1 : -1;
+            Vec3 n = axisVector(axis, side);
+            Vec3 x = onFace(r, b, axis, side);
+            Vec3 d = within(r, n.negate(), 0.3).times(scale(r));
+            // Start past the box and keep going: both slab-interval ends are negative.
+            Vec3 size = b.max.minus(b.min);
+            double beyond = (size.length() * 2 + uniform(r, 0.5, 10)) / d.length();
+            Ray ray = new Ray(x.plus(d.times(beyond)), d);
+            IntersectionRecord rec = new IntersectionRecord();
+            assertUntouched("box behind the origin #" + i + " (seed " + seed + ")", b, ray, rec,
+                    b.intersect(rec, ray), new IntersectionRecord(), "t_exit < tMin: the box is behind the ray");
+        }
+    }
+
+    @Test
+    void tMinInsideTheBoxGivesTheExit() {
+        Box b = new Box(new Vec3(0, 0, 0), new Vec3(2, 2, 2), M, "box");
+        Ray ray = new Ray(new Vec3(-4, 1, 1), new Vec3(2, 0, 0), 2.5, 100);
+        IntersectionRecord rec = new IntersectionRecord();
+        assertHit("tMin = 2.5 between t_enter = 2 and t_exit = 3", b, ray, rec, b.intersect(rec, ray), 3,
+                new Vec3(2, 1, 1), new Vec3(1, 0, 0), "t_enter is below tMin: record t_exit, face x = x_max");
+    }
+
+    @Test
+    void tMaxBeforeTheBoxMisses() {
+        Box b = new Box(new Vec3(0, 0, 0), new Vec3(2, 2, 2), M, "box");
+        Ray ray = new Ray(new Vec3(-4, 1, 1), new Vec3(2, 0, 0), 0, 1.9);
+        IntersectionRecord rec = new IntersectionRecord();
+        assertUntouched("tMax = 1.9 before t_enter = 2", b, ray, rec, b.intersect(rec, ray),
+                new IntersectionRecord(), "t_enter > tMax: no hit");
+    }
+
+    @Test
+    void recordIsLeftUntouchedByAFartherHit() {
+        long seed = 0xfa4b0L;
+        SplittableRandom r = Hidden.rng(seed);
+        for (int i = 0; i < N; i++) {
+            Box b = randomBox(r);
+            int axis = r.nextInt(3);
+            int side = r.nextBoolean() ? 1 : -1;
+            Vec3 n = axisVector(axis, side);
+            Vec3 x = onFace(r, b, axis, side);
+            Vec3 d = within(r, n.negate(), 0.3).times(scale(r));
+            double t = uniform(r, 0.5, 30) / d.length();
+            Ray ray = new Ray(x.minus(d.times(t)), d);
+            IntersectionRecord rec = recordWith(t * 0.9);
+            IntersectionRecord before = copy(rec);
+            assertUntouched("a closer hit is already recorded #" + i + " (seed " + seed + ")", b, ray, rec,
+                    b.intersect(rec, ray), before, "record only hits with t < outRecord.t; leave the record untouched");
+        }
+    }
+
+    @Test
+    void closerHitReplacesARecordedFartherOne() {
+        Box b = new Box(new Vec3(0, 0, 0), new Vec3(2, 2, 2), M, "box");
+        Ray ray = new Ray(new Vec3(1, 1, 7), new Vec3(0, 0, -0.5));
+        IntersectionRecord rec = recordWith(11);
+        assertHit("recorded hit at t = 11, box entry at t = 10", b, ray, rec, b.intersect(rec, ray), 10,
+                new Vec3(1, 1, 2), new Vec3(0, 0, 1), "t = 10 < outRecord.t = 11: record the new hit");
+    }
+
+    @Test
+    void closedRangeAndStrictRecordComparisonAtExactValues() {
+        Box b = new Box(new Vec3(-1, -1, -1), new Vec3(1, 1, 1), M, "box");
+        Ray ray = new Ray(new Vec3(-5, 0.5, 0.25), new Vec3(1, 0, 0), 0, 4);
+        IntersectionRecord rec = new IntersectionRecord();
+        assertHit("tMax = 4 equals t_enter = 4", b, ray, rec, b.intersect(rec, ray), 4, new Vec3(-1, 0.5, 0.25),
+                new Vec3(-1, 0, 0), "the range is closed: tMin ≤ t ≤ tMax");
+        Ray full = new Ray(new Vec3(-5, 0.5, 0.25), new Vec3(1, 0, 0));
+        IntersectionRecord same = recordWith(4);
+        IntersectionRecord before = copy(same);
+        assertUntouched("outRecord.t = 4 equals t_enter = 4", b, full, same, b.intersect(same, full), before,
+                "update only when t < outRecord.t (strictly closer)");
+        Ray inside = new Ray(new Vec3(0, 0.5, 0.25), new Vec3(1, 0, 0));
+        IntersectionRecord atExit = recordWith(1);
+        IntersectionRecord before2 = copy(atExit);
+        assertUntouched("from inside, t_exit = 1 equals outRecord.t = 1", b, inside, atExit, b.intersect(atExit, inside),
+                before2, "the exit must also be strictly closer than outRecord.t");
+    }
+}

@@ -1,0 +1,212 @@
+package raylab.surface;
+
+import static raylab.hidden.Hidden.M;
+import static raylab.hidden.Hidden.assertHit;
+import static raylab.hidden.Hidden.assertUntouched;
+import static raylab.hidden.Hidden.copy;
+import static raylab.hidden.Hidden.point;
+import static raylab.hidden.Hidden.recordWith;
+import static raylab.hidden.Hidden.scale;
+import static raylab.hidden.Hidden.uniform;
+import static raylab.hidden.Hidden.unit;
+import static raylab.hidden.Hidden.within;
+
+import java.util.SplittableRandom;
+
+import org.junit.jupiter.api.Tag;
+import org.junit.jupiter.api.Test;
+
+import raylab.hidden.Hidden;
+import raylab.math.Vec3;
+import raylab.ray.IntersectionRecord;
+import raylab.ray.Ray;
+
+/**
+ * Hidden tests of Triangle.intersect (grader only). A point is chosen by barycentric coordinates
+ * (inside with a margin, or outside one edge with a margin), then a ray through it: the plane and
+ * edges test and Möller–Trumbore both pass.
+ */
+@Tag("triangle")
+class TriangleHiddenTest {
+    private static final int N = 200;
+
+    private static Triangle randomTriangle(SplittableRandom r) {
+        while (true) {
+            Vec3 a = point(r, 20);
+            double size = uniform(r, 0.5, 10);
+            Vec3 b = a.plus(unit(r).times(size));
+            Vec3 c = a.plus(unit(r).times(size * uniform(r, 0.5, 1.5)));
+            Vec3 n = b.minus(a).cross(c.minus(a));
+            // Not too thin: the smallest angle well away from 0.
+            if (n.length() > 0.3 * b.minus(a).length() * c.minus(a).length()
+                    && n.length() > 0.3 * b.minus(a).length() * c.minus(b).length()) {
+                return new Triangle(a, b, c, M, "triangle");
+            }
+        }
+    }
+
+    private static Vec3 unitNormal(Triangle tr) {
+        return tr.b.minus(tr.a).cross(tr.c.minus(tr.a)).normalize();
+    }
+
+    private static Vec3 at(Triangle tr, double beta, double gamma) {
+        return tr.a.times(1 - beta - gamma).plus(tr.b.times(beta)).plus(tr.c.times(gamma));
+    }
+
+    @Test
+    void randomRaysThroughTheInteriorFromBothSides() {
+        long seed = 0x7e1aL;
+        SplittableRandom r = Hidden.rng(seed);
+        for (int i = 0; i < N; i++) {
+            Triangle tr = randomTriangle(r);
+            Vec3 n = unitNormal(tr);
+            double beta = uniform(r, 0.05, 0.9);
+            double gamma = uniform(r, 0.05, 0.95 - beta);
+            Vec3 x = at(tr, beta, gamma);
+            Vec3 axis = i % 2 == 0 ? n.negate() : n; // from the front, then from the back
+            Vec3 d = within(r, axis, 0.2).times(scale(r));
+            double t = uniform(r, 0.5, 30) / d.length();
+            Ray ray = new Ray(x.minus(d.times(t)), d);
+            IntersectionRecord rec = new IntersectionRecord();
+            assertHit("random ray through the interior #" + i + " (seed " + seed + ", from the "
+                    + (i % 2 == 0 ? "front" : "back") + ")", tr, ray, rec, tr.intersect(rec, ray), t, x, n,
+                    "t = (a − p)·n / (d·n); the normal is (b − a) × (c − a) normalized, whichever side the ray comes from");
+        }
+    }
+
+    @Test
+    void pointsJustOutsideEachEdgeMiss() {
+        long seed = 0xed9eL;
+        SplittableRandom r = Hidden.rng(seed);
+        for (int i = 0; i < 3 * N; i++) {
+            Triangle tr = randomTriangle(r);
+            Vec3 n = unitNormal(tr);
+            double[] w = {uniform(r, 0.1, 1), uniform(r, 0.1, 1), 0};
+            int edge = i % 3; // the barycentric coordinate made negative
+            double s = w[0] + w[1];
+            double[] bary = new double[3];
+            bary[(edge + 1) % 3] = (w[0] / s) * 1.05;
+            bary[(edge + 2) % 3] = (w[1] / s) * 1.05;
+            bary[edge] = 1 - bary[(edge + 1) % 3] - bary[(edge + 2) % 3]; // about −0.05
+            Vec3 x = at(tr, bary[1], bary[2]);
+            Vec3 d = within(r, i % 2 == 0 ? n.negate() : n, 0.2).times(scale(r));
+            Ray ray = new Ray(x.minus(d.times(uniform(r, 0.5, 30) / d.length())), d);
+            IntersectionRecord rec = new IntersectionRecord();
+            assertUntouched("plane point just outside edge " + "abc".charAt((edge + 1) % 3) + "abc".charAt((edge + 2) % 3)
+                    + " #" + i + " (seed " + seed + ")", tr, ray, rec, tr.intersect(rec, ray),
+                    new IntersectionRecord(), "the point must be on the inner side of all three edges");
+        }
+    }
+
+    @Test
+    void raysParallelToThePlaneMiss() {
+        long seed = 0x9a4aL;
+        SplittableRandom r = Hidden.rng(seed);
+        for (int i = 0; i < N; i++) {
+            Triangle tr = randomTriangle(r);
+            Vec3 n = unitNormal(tr);
+            Vec3 inPlane = tr.b.minus(tr.a).times(uniform(r, -1, 1)).plus(tr.c.minus(tr.a).times(uniform(r, -1, 1)));
+            if (inPlane.length() < 1e-3) {
+                continue;
+            }
+            Vec3 p = at(tr, 0.3, 0.3).plus(n.times(uniform(r, 0.1, 3) * (r.nextBoolean() ? 1 : -1)))
+                    .minus(inPlane.times(2));
+            Ray ray = new Ray(p, inPlane);
+            IntersectionRecord rec = new IntersectionRecord();
+            assertUntouched("ray parallel to the plane, off the plane #" + i + " (seed " + seed + ")", tr, ray, rec,
+                    tr.intersect(rec, ray), new IntersectionRecord(), "d·n = 0: the ray never meets the plane");
+        }
+    }
+
+    @Test
+    void triangleBehindTheOriginIsMissed() {
+        long seed = 0xbe47L;
+        SplittableRandom r = Hidden.rng(seed);
+        for (int i = 0; i < N; i++) {
+            Triangle tr = randomTriangle(r);
+            Vec3 n = unitNormal(tr);
+            Vec3 x = at(tr, 0.3, 0.3);
+            Vec3 d = within(r, n, 0.2).times(scale(r));
+            Ray ray = new Ray(x.plus(d.times(uniform(r, 0.5, 30) / d.length())), d);
+            IntersectionRecord rec = new IntersectionRecord();
+            assertUntouched("triangle behind the origin #" + i + " (seed " + seed + ")", tr, ray, rec,
+                    tr.intersect(rec, ray), new IntersectionRecord(), "t < tMin: behind the ray's origin");
+        }
+    }
+
+    @Test
+    void theEndsOfTheTRange() {
+        Triangle tr = new Triangle(new Vec3(-1, -1, 0), new Vec3(3, -1, 0), new Vec3(-1, 3, 0), M, "triangle");
+        Vec3 p = new Vec3(0, 0, 4);
+        Vec3 d = new Vec3(0, 0, -2); // hit at t = 2
+        IntersectionRecord rec = new IntersectionRecord();
+        Ray inside = new Ray(p, d, 1.9, 2.1);
+        assertHit("t range [1.9, 2.1] around the hit t = 2", tr, inside, rec, tr.intersect(rec, inside), 2,
+                new Vec3(0, 0, 0), new Vec3(0, 0, 1), "the hit is in range");
+        Ray early = new Ray(p, d, 0, 1.9);
+        IntersectionRecord rec2 = new IntersectionRecord();
+        assertUntouched("tMax = 1.9 before the hit at t = 2", tr, early, rec2, tr.intersect(rec2, early),
+                new IntersectionRecord(), "t > tMax: no hit");
+        Ray late = new Ray(p, d, 2.1, 100);
+        IntersectionRecord rec3 = new IntersectionRecord();
+        assertUntouched("tMin = 2.1 after the hit at t = 2", tr, late, rec3, tr.intersect(rec3, late),
+                new IntersectionRecord(), "t < tMin: no hit");
+    }
+
+    @Test
+    void recordIsLeftUntouchedByAFartherHit() {
+        long seed = 0xfa47L;
+        SplittableRandom r = Hidden.rng(seed);
+        for (int i = 0; i < N; i++) {
+            Triangle tr = randomTriangle(r);
+            Vec3 n = unitNormal(tr);
+            Vec3 x = at(tr, uniform(r, 0.1, 0.4), uniform(r, 0.1, 0.4));
+            Vec3 d = within(r, n.negate(), 0.2).times(scale(r));
+            double t = uniform(r, 0.5, 30) / d.length();
+            Ray ray = new Ray(x.minus(d.times(t)), d);
+            IntersectionRecord rec = recordWith(t * 0.9);
+            IntersectionRecord before = copy(rec);
+            assertUntouched("a closer hit is already recorded #" + i + " (seed " + seed + ")", tr, ray, rec,
+                    tr.intersect(rec, ray), before, "record only hits with t < outRecord.t");
+        }
+    }
+
+    @Test
+    void closerHitReplacesARecordedFartherOne() {
+        Triangle tr = new Triangle(new Vec3(0, 0, -5), new Vec3(0, 4, -5), new Vec3(4, 0, -5), M, "triangle");
+        Ray ray = new Ray(new Vec3(1, 1, 0), new Vec3(0, 0, -1));
+        IntersectionRecord rec = recordWith(5.5);
+        // (b − a) × (c − a) = (0,4,0) × (4,0,0) = (0, 0, −16): the unit normal is (0, 0, −1).
+        assertHit("recorded hit at t = 5.5, triangle at t = 5", tr, ray, rec, tr.intersect(rec, ray), 5,
+                new Vec3(1, 1, -5), new Vec3(0, 0, -1), "t = 5 < outRecord.t: record it; n = (b − a) × (c − a) normalized");
+    }
+
+    @Test
+    void tinyAndHugeTriangles() {
+        for (double size : new double[] {1e-3, 1, 1e3}) {
+            Triangle tr = new Triangle(new Vec3(0, 0, 0).times(size), new Vec3(2, 0, 1).times(size),
+                    new Vec3(0, 2, 1).times(size), M, "triangle");
+            Vec3 x = new Vec3(0.5, 0.5, 0.5).times(size);
+            Vec3 d = new Vec3(0.1, -0.2, -1);
+            Ray ray = new Ray(x.minus(d.times(3 * size)), d);
+            IntersectionRecord rec = new IntersectionRecord();
+            Vec3 n = new Vec3(2, 0, 1).cross(new Vec3(0, 2, 1)).normalize();
+            assertHit("triangle of size " + size, tr, ray, rec, tr.intersect(rec, ray), 3 * size, x, n,
+                    "the same method works at every scale");
+        }
+    }
+
+    @Test
+    void closedRangeAndStrictRecordComparisonAtExactValues() {
+        Triangle tr = new Triangle(new Vec3(0, 0, 0), new Vec3(1, 0, 0), new Vec3(0, 1, 0), M, "triangle");
+        Ray exact = new Ray(new Vec3(0.25, 0.25, 2), new Vec3(0, 0, -1), 2, 2);
+        IntersectionRecord rec = new IntersectionRecord();
+        assertHit("tMin = tMax = 2 equals the hit t = 2", tr, exact, rec, tr.intersect(rec, exact), 2,
+                new Vec3(0.25, 0.25, 0), new Vec3(0, 0, 1), "the range is closed at both ends");
+        Ray full = new Ray(new Vec3(0.25, 0.25, 2), new Vec3(0, 0, -1));
+        IntersectionRecord same = recordWith(2);
+        IntersectionRecord before = copy(same);
+        assertUntouched("outRecord.t = 2 equals the hit t = 2", tr, full, same, tr.intersect(same, full), before,
+                "update only when t < outRecord.t (strictly closer)");
+    }
+}

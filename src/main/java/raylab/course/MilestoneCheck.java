@@ -1,0 +1,304 @@
+package raylab.course;
+
+import java.io.File;
+import java.io.IOException;
+import java.nio.charset.StandardCharsets;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.util.ArrayList;
+import java.util.LinkedHashMap;
+import java.util.List;
+import java.util.Map;
+import java.util.concurrent.TimeUnit;
+import java.util.function.Consumer;
+import java.util.regex.Matcher;
+import java.util.regex.Pattern;
+
+/**
+ * What {@code raylab check} does, for the student's tree and the instructor's alike: compiles the
+ * visible tests of the chosen milestones against the running raylab, runs them in a child JVM,
+ * renders each milestone's scenes in a child JVM and compares them with their references, and
+ * says for each milestone what to look at next.
+ */
+public final class MilestoneCheck {
+    /** Folder of the assertion helpers the visible tests share. */
+    public static final String HELPERS = "src/test/java/raylab/testing";
+
+    /** How a scene came out. */
+    public enum SceneStatus {
+        MATCH, DIFFERS, NOT_IMPLEMENTED, ERROR
+    }
+
+    /** One scene: its file, what happened, and the line that says so. */
+    public record SceneOutcome(Assignment.GradedScene scene, SceneStatus status, String message) {
+        public boolean matches() {
+            return status == SceneStatus.MATCH;
+        }
+    }
+
+    /**
+     * One milestone: its test results (or why they could not run) and its scenes.
+     *
+     * @param problem a compile error or a failed run, empty if the tests ran
+     */
+    public record Outcome(Assignment assignment, List<TestResult> tests, String problem, List<SceneOutcome> scenes) {
+        public long testsPassed() {
+            return tests.stream().filter(t -> t.status().passed()).count();
+        }
+
+        public long scenesMatching() {
+            return scenes.stream().filter(SceneOutcome::matches).count();
+        }
+
+        public boolean done() {
+            return problem.isEmpty() && !tests.isEmpty() && testsPassed() == tests.size()
+                    && scenesMatching() == scenes.size();
+        }
+
+        /** What to look at next, in one short line. */
+        public String nextStep() {
+            String id = assignment.id();
+            if (!problem.isEmpty()) {
+                return problem;
+            }
+            if (tests.isEmpty()) {
+                return "no visible tests found for " + id;
+            }
+            for (TestResult t : tests) {
+                if (!t.status().passed()) {
+                    String missing = missingMilestone(t.message());
+                    if (missing != null) {
+                        return missingStep(id, missing, t.message());
+                    }
+                }
+            }
+            for (TestResult t : tests) {
+                if (!t.status().passed()) {
+                    return "fix " + simpleName(t.className()) + "." + t.method() + ": " + oneLine(t.message(), 90);
+                }
+            }
+            for (SceneOutcome s : scenes) {
+                if (s.status() == SceneStatus.NOT_IMPLEMENTED) {
+                    String missing = missingMilestone(s.message());
+                    return missing == null ? s.message() : missingStep(id, missing, s.message());
+                }
+            }
+            for (SceneOutcome s : scenes) {
+                if (!s.matches()) {
+                    if (s.status() == SceneStatus.DIFFERS) {
+                        String name = baseName(s.scene().scene());
+                        return "./raylab render " + s.scene().scene() + " --compare " + s.scene().reference()
+                                + ", then look at out/" + name + ".diff.png";
+                    }
+                    return s.scene().scene() + ": " + oneLine(s.message(), 90);
+                }
+            }
+            return "done";
+        }
+
+        private String missingStep(String id, String missing, String message) {
+            Matcher m = WRITE.matcher(message);
+            String method = m.find() ? m.group(1) : null;
+            if (missing.equals(id)) {
+                return "implement " + (method != null ? method : "the methods of " + assignment.folder() + "/README.md");
+            }
+            return "first finish milestone " + missing + (method != null ? " (" + method + ")" : "");
+        }
+    }
+
+    private static final Pattern MISSING = Pattern.compile("milestone '([a-z0-9-]+)' is not implemented yet");
+    private static final Pattern WRITE = Pattern.compile("not implemented yet: write ([A-Za-z0-9_.]+)");
+
+    private MilestoneCheck() {
+    }
+
+    /** The milestone a NotImplemented message names, or null. */
+    static String missingMilestone(String message) {
+        if (message == null) {
+            return null;
+        }
+        Matcher m = MISSING.matcher(message);
+        return m.find() ? m.group(1) : null;
+    }
+
+    /**
+     * Checks the given milestones of the project at {@code root}, writing build output under
+     * {@code root/target/check} and renders under {@code root/out}.
+     */
+    public static List<Outcome> run(Path root, List<Assignment> selected, int threads, Consumer<String> progress)
+            throws IOException {
+        Path work = root.resolve("target/check");
+        List<Path> own = JavaBuild.ownClassPath();
+        Path helpers = work.resolve("helpers");
+        deleteTree(work);
+        progress.accept("compiling the visible tests ...");
+        JavaBuild.Result h = JavaBuild.compile(JavaBuild.sourcesUnder(root.resolve(HELPERS)), own, helpers);
+        String helperProblem = h.success() ? "" : "the test helpers do not compile: " + first(root, h);
+
+        Map<String, String> problems = new LinkedHashMap<>();
+        Map<String, String> milestoneOfClass = new LinkedHashMap<>();
+        List<Path> testDirs = new ArrayList<>();
+        for (Assignment a : selected) {
+            if (!helperProblem.isEmpty()) {
+                problems.put(a.id(), helperProblem);
+                continue;
+            }
+            List<Path> sources = new ArrayList<>();
+            for (String v : a.tests().visible()) {
+                Path p = root.resolve(v);
+                if (!Files.isRegularFile(p)) {
+                    problems.put(a.id(), "visible test " + v + " is missing");
+                }
+                sources.add(p);
+            }
+            if (problems.containsKey(a.id())) {
+                continue;
+            }
+            Path out = work.resolve("tests").resolve(a.id());
+            List<Path> cp = new ArrayList<>(List.of(helpers));
+            cp.addAll(own);
+            JavaBuild.Result r = JavaBuild.compile(sources, cp, out);
+            if (!r.success()) {
+                problems.put(a.id(), "fix the compile error: " + first(root, r));
+                continue;
+            }
+            testDirs.add(out);
+            for (String v : a.tests().visible()) {
+                milestoneOfClass.put(className(v), a.id());
+            }
+        }
+
+        Map<String, List<TestResult>> results = new LinkedHashMap<>();
+        if (!milestoneOfClass.isEmpty()) {
+            progress.accept("running the tests ...");
+            List<Path> cp = new ArrayList<>(testDirs);
+            cp.add(helpers);
+            cp.addAll(own);
+            List<String> classes = new ArrayList<>(milestoneOfClass.keySet());
+            Path runDir = work.resolve("run");
+            Files.createDirectories(runDir);
+            List<TestResult> expected = TestLauncher.discover(cp, null, List.of(), classes, runDir);
+            TestLauncher.Outcome o = TestLauncher.run(cp, null, List.of(), classes, TestLauncher.Limits.DEFAULT,
+                    runDir, expected);
+            for (TestResult t : o.results()) {
+                String c = t.className();
+                int dollar = c.indexOf('$');
+                String id = milestoneOfClass.get(dollar < 0 ? c : c.substring(0, dollar));
+                if (id != null) {
+                    results.computeIfAbsent(id, k -> new ArrayList<>()).add(t);
+                }
+            }
+        }
+
+        List<Outcome> out = new ArrayList<>();
+        for (Assignment a : selected) {
+            List<SceneOutcome> scenes = new ArrayList<>();
+            for (Assignment.GradedScene g : a.scenes()) {
+                progress.accept("rendering " + g.scene() + " ...");
+                scenes.add(render(root, g, own, threads));
+            }
+            out.add(new Outcome(a, results.getOrDefault(a.id(), List.of()), problems.getOrDefault(a.id(), ""),
+                    scenes));
+        }
+        return out;
+    }
+
+    /** Renders a scene with {@code raylab render --compare} in a child JVM (so a stuck render can be stopped). */
+    static SceneOutcome render(Path root, Assignment.GradedScene g, List<Path> classPath, int threads)
+            throws IOException {
+        String java = Path.of(System.getProperty("java.home"), "bin", "java").toString();
+        Path png = root.resolve("out").resolve(baseName(g.scene()) + ".png");
+        List<String> cmd = List.of(java, "-Xmx1g", "-Djava.awt.headless=true", "-cp",
+                String.join(File.pathSeparator, classPath.stream().map(Path::toString).toList()),
+                "raylab.cli.Main", "render", root.resolve(g.scene()).toString(), "-o", png.toString(),
+                "--compare", root.resolve(g.reference()).toString(), "--tolerance", Double.toString(g.tolerance()),
+                "--quiet", "--threads", Integer.toString(threads));
+        Path log = Files.createTempFile("raylab-check", ".log");
+        try {
+            Process p = new ProcessBuilder(cmd).directory(root.toFile()).redirectErrorStream(true)
+                    .redirectOutput(log.toFile()).start();
+            p.getOutputStream().close();
+            if (!p.waitFor(300, TimeUnit.SECONDS)) {
+                p.destroyForcibly();
+                p.waitFor(5, TimeUnit.SECONDS);
+                return new SceneOutcome(g, SceneStatus.ERROR, "the render did not finish within 300 s (an endless loop?)");
+            }
+            String text = Files.readString(log, StandardCharsets.UTF_8).strip();
+            String last = "";
+            for (String line : text.split("\n")) {
+                if (line.startsWith("raylab: ") || line.startsWith("compare with ")) {
+                    last = line.startsWith("raylab: ") ? line.substring(8) : line.replaceFirst("^compare with \\S+: ", "");
+                }
+            }
+            SceneStatus s = switch (p.exitValue()) {
+                case 0 -> SceneStatus.MATCH;
+                case 3 -> SceneStatus.NOT_IMPLEMENTED;
+                case 1 -> last.startsWith("DIFFERS") ? SceneStatus.DIFFERS : SceneStatus.ERROR;
+                default -> SceneStatus.ERROR;
+            };
+            return new SceneOutcome(g, s, last.isEmpty() ? "exit status " + p.exitValue() : last);
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+            return new SceneOutcome(g, SceneStatus.ERROR, "interrupted");
+        } finally {
+            Files.deleteIfExists(log);
+        }
+    }
+
+    /** The test class of a source path such as src/test/java/raylab/surface/SphereTest.java. */
+    public static String className(String sourcePath) {
+        String p = sourcePath.replace('\\', '/');
+        int k = p.indexOf("src/test/java/");
+        if (k >= 0) {
+            p = p.substring(k + "src/test/java/".length());
+        }
+        return p.replaceFirst("\\.java$", "").replace('/', '.');
+    }
+
+    static String baseName(String path) {
+        String n = path.substring(path.replace('\\', '/').lastIndexOf('/') + 1);
+        return n.replaceFirst("\\.json$", "");
+    }
+
+    static String simpleName(String className) {
+        return className.substring(className.lastIndexOf('.') + 1);
+    }
+
+    static String oneLine(String s, int n) {
+        if (s == null) {
+            return "";
+        }
+        String t = s.strip();
+        int nl = t.indexOf('\n');
+        if (nl >= 0) {
+            t = t.substring(0, nl).strip();
+        }
+        return t.length() <= n ? t : t.substring(0, n - 3) + "...";
+    }
+
+    private static String first(Path root, JavaBuild.Result r) {
+        if (r.errors().isEmpty()) {
+            return "javac failed";
+        }
+        JavaBuild.Problem p = r.errors().get(0);
+        String where = p.file() == null ? "" : rel(root, p.file()) + ":" + p.line() + ": ";
+        return where + p.message() + (r.errors().size() > 1 ? " (and " + (r.errors().size() - 1) + " more)" : "");
+    }
+
+    private static String rel(Path root, Path file) {
+        Path a = root.toAbsolutePath().normalize();
+        Path f = file.toAbsolutePath().normalize();
+        return f.startsWith(a) ? a.relativize(f).toString().replace('\\', '/') : f.toString();
+    }
+
+    private static void deleteTree(Path p) throws IOException {
+        if (!Files.exists(p)) {
+            return;
+        }
+        try (var s = Files.walk(p)) {
+            for (Path q : s.sorted(java.util.Comparator.reverseOrder()).toList()) {
+                Files.delete(q);
+            }
+        }
+    }
+}

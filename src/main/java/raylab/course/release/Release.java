@@ -1,0 +1,267 @@
+package raylab.course.release;
+
+import java.io.IOException;
+import java.nio.charset.StandardCharsets;
+import java.nio.file.AtomicMoveNotSupportedException;
+import java.nio.file.FileVisitResult;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.nio.file.SimpleFileVisitor;
+import java.nio.file.StandardCopyOption;
+import java.nio.file.attribute.BasicFileAttributes;
+import java.nio.file.attribute.PosixFileAttributeView;
+import java.nio.file.attribute.PosixFilePermissions;
+import java.util.ArrayList;
+import java.util.HashSet;
+import java.util.List;
+import java.util.Map;
+import java.util.Set;
+import java.util.SortedMap;
+import java.util.TreeMap;
+import java.util.stream.Stream;
+
+import com.fasterxml.jackson.core.util.DefaultIndenter;
+import com.fasterxml.jackson.core.util.DefaultPrettyPrinter;
+import com.fasterxml.jackson.core.util.Separators;
+import com.fasterxml.jackson.databind.JsonNode;
+import com.fasterxml.jackson.databind.ObjectMapper;
+import com.fasterxml.jackson.databind.node.ObjectNode;
+
+import raylab.course.Assignment;
+import raylab.course.Assignments;
+import raylab.course.SolutionRegions;
+
+/**
+ * Cuts the student starter from the instructor's tree: the files {@code assignments/release.json}
+ * selects, with every solution region replaced by its stub, the hidden test lists removed from
+ * the assignment descriptions, and a README generated from {@code assignments/STARTER-README.md}.
+ * The same tree gives the same bytes on every run (files are walked in sorted order and nothing
+ * but the solution regions and the hidden lists is changed).
+ */
+public final class Release {
+    /** What was written. */
+    public record Written(Path out, int files, List<String> milestones, List<String> stubbedFiles) {
+    }
+
+    /** The starter in memory: relative path ('/'-separated) to content, sorted. */
+    public record Tree(SortedMap<String, byte[]> files, Set<String> executable, List<String> stubbedFiles,
+            List<String> milestones) {
+    }
+
+    private Release() {
+    }
+
+    /** Computes the starter's files without writing anything. */
+    public static Tree build(Path root) throws IOException {
+        ReleaseSpec spec = ReleaseSpec.load(root);
+        Assignments assignments = Assignments.load(root);
+        Set<String> visibleTests = new HashSet<>();
+        for (Assignment a : assignments.all()) {
+            for (String v : a.tests().visible()) {
+                visibleTests.add(v);
+                if (!Files.isRegularFile(root.resolve(v))) {
+                    throw new IOException(a.folder() + "/assignment.json: visible test " + v + " does not exist");
+                }
+            }
+        }
+        SortedMap<String, byte[]> out = new TreeMap<>();
+        List<String> stubbed = new ArrayList<>();
+        for (String rel : projectFiles(root)) {
+            boolean wanted = ReleaseSpec.matchesAny(spec.include(), rel) || visibleTests.contains(rel);
+            if (!wanted || ReleaseSpec.matchesAny(spec.exclude(), rel) || ReleaseSpec.matchesAny(spec.never(), rel)) {
+                continue;
+            }
+            if (rel.equals("README.md")) {
+                continue; // generated below
+            }
+            byte[] bytes = Files.readAllBytes(root.resolve(rel));
+            if (rel.matches("assignments/[^/]+/assignment\\.json")) {
+                bytes = withoutHiddenTests(rel, bytes);
+            } else if (rel.endsWith(".java")) {
+                String text = new String(bytes, StandardCharsets.UTF_8);
+                if (SolutionRegions.hasRegions(text) || assignments.ownerOf(rel).isPresent()) {
+                    text = stub(rel, text, assignments);
+                    bytes = text.getBytes(StandardCharsets.UTF_8);
+                    stubbed.add(rel);
+                }
+            }
+            out.put(rel, bytes);
+        }
+        for (Assignment a : assignments.all()) {
+            for (Assignment.StudentFile f : a.files()) {
+                if (!out.containsKey(f.path())) {
+                    throw new IOException(a.folder() + "/assignment.json: student file " + f.path()
+                            + " is not in the starter (missing, or left out by " + ReleaseSpec.FILE + ")");
+                }
+            }
+        }
+        out.put("README.md", StarterReadme.render(root, spec.readmeTemplate(), assignments)
+                .getBytes(StandardCharsets.UTF_8));
+        Set<String> exec = new HashSet<>();
+        for (String e : spec.executable()) {
+            if (out.containsKey(e)) {
+                exec.add(e);
+            }
+        }
+        return new Tree(out, Set.copyOf(exec), List.copyOf(stubbed), assignments.ids());
+    }
+
+    /** The student's version of a file with solution regions; checks that they belong to its milestone. */
+    static String stub(String rel, String text, Assignments assignments) throws IOException {
+        var owner = assignments.ownerOf(rel);
+        List<SolutionRegions.Region> regions;
+        try {
+            regions = SolutionRegions.parse(rel, text);
+        } catch (IllegalArgumentException e) {
+            throw new IOException(e.getMessage());
+        }
+        if (owner.isEmpty()) {
+            throw new IOException(rel + ":" + regions.get(0).beginLine() + ": solution region of milestone '"
+                    + regions.get(0).milestone() + "' in a file that no assignment.json lists as a student file");
+        }
+        String id = owner.get().id();
+        if (regions.isEmpty()) {
+            throw new IOException(rel + ": listed as a student file of milestone '" + id
+                    + "' but has no solution region (the student would get the solution)");
+        }
+        for (SolutionRegions.Region r : regions) {
+            if (!r.milestone().equals(id)) {
+                throw new IOException(rel + ":" + r.beginLine() + ": solution region of milestone '" + r.milestone()
+                        + "' in a file of milestone '" + id + "' (each milestone's work lives in its own files)");
+            }
+        }
+        if (regions.stream().noneMatch(r -> r.stubLine() > 0)) {
+            throw new IOException(rel + ": no region of milestone '" + id + "' has a // STUB part, so nothing"
+                    + " would tell the student what to write");
+        }
+        return SolutionRegions.toStudent(rel, text, Set.of());
+    }
+
+    /** An assignment.json without its tests.hidden list, written in one fixed layout. */
+    static byte[] withoutHiddenTests(String rel, byte[] bytes) throws IOException {
+        ObjectMapper json = new ObjectMapper();
+        JsonNode node = json.readTree(bytes);
+        if (!(node instanceof ObjectNode obj)) {
+            throw new IOException(rel + ": not a JSON object");
+        }
+        if (obj.get("tests") instanceof ObjectNode tests) {
+            tests.remove("hidden");
+        }
+        DefaultPrettyPrinter pretty = new DefaultPrettyPrinter()
+                .withSeparators(Separators.createDefaultInstance()
+                        .withObjectFieldValueSpacing(Separators.Spacing.AFTER))
+                .withObjectIndenter(new DefaultIndenter("  ", "\n"))
+                .withArrayIndenter(new DefaultIndenter("  ", "\n"));
+        String text = json.writer(pretty).writeValueAsString(obj);
+        return (text + "\n").getBytes(StandardCharsets.UTF_8);
+    }
+
+    /** Every regular file of the project, relative and '/'-separated, sorted; .git and build output skipped. */
+    static List<String> projectFiles(Path root) throws IOException {
+        List<String> out = new ArrayList<>();
+        Files.walkFileTree(root, new SimpleFileVisitor<>() {
+            @Override
+            public FileVisitResult preVisitDirectory(Path dir, BasicFileAttributes attrs) {
+                String rel = rel(root, dir);
+                if (rel.equals(".git") || rel.equals("target") || rel.equals("out")) {
+                    return FileVisitResult.SKIP_SUBTREE;
+                }
+                return FileVisitResult.CONTINUE;
+            }
+
+            @Override
+            public FileVisitResult visitFile(Path file, BasicFileAttributes attrs) {
+                if (attrs.isRegularFile()) {
+                    out.add(rel(root, file));
+                }
+                return FileVisitResult.CONTINUE;
+            }
+        });
+        out.sort(null);
+        return out;
+    }
+
+    static String rel(Path root, Path p) {
+        return root.relativize(p).toString().replace('\\', '/');
+    }
+
+    /**
+     * Writes the starter to {@code out}: first into a temporary sibling folder, then moved into
+     * place, so a failed run leaves no half-written starter. A non-empty {@code out} is refused
+     * unless {@code force}.
+     */
+    public static Written write(Path root, Path out, boolean force) throws IOException {
+        Path absRoot = root.toAbsolutePath().normalize();
+        Path target = out.toAbsolutePath().normalize();
+        if (absRoot.startsWith(target)) {
+            throw new IOException(out + ": the starter cannot be written over the project itself");
+        }
+        if (Files.exists(target)) {
+            if (!Files.isDirectory(target)) {
+                throw new IOException(out + ": exists and is not a folder");
+            }
+            boolean empty;
+            try (Stream<Path> s = Files.list(target)) {
+                empty = s.findAny().isEmpty();
+            }
+            if (!empty && !force) {
+                throw new IOException(out + ": not empty (use --force to replace it)");
+            }
+            if (Files.exists(target.resolve(ReleaseSpec.FILE))) {
+                throw new IOException(out + ": looks like an instructor tree (it has " + ReleaseSpec.FILE
+                        + "); refusing to replace it");
+            }
+        }
+        Tree tree = build(absRoot);
+        Path parent = target.getParent();
+        Files.createDirectories(parent);
+        Path partial = parent.resolve("." + target.getFileName() + ".partial-" + ProcessHandle.current().pid());
+        deleteTree(partial);
+        try {
+            for (Map.Entry<String, byte[]> e : tree.files().entrySet()) {
+                Path f = partial.resolve(e.getKey());
+                Files.createDirectories(f.getParent());
+                Files.write(f, e.getValue());
+                setMode(f, tree.executable().contains(e.getKey()));
+            }
+            deleteTree(target);
+            try {
+                Files.move(partial, target, StandardCopyOption.ATOMIC_MOVE);
+            } catch (AtomicMoveNotSupportedException e) {
+                Files.move(partial, target);
+            }
+        } finally {
+            deleteTree(partial);
+        }
+        return new Written(target, tree.files().size(), tree.milestones(), tree.stubbedFiles());
+    }
+
+    private static void setMode(Path f, boolean executable) throws IOException {
+        PosixFileAttributeView posix = Files.getFileAttributeView(f, PosixFileAttributeView.class);
+        if (posix != null) {
+            posix.setPermissions(PosixFilePermissions.fromString(executable ? "rwxr-xr-x" : "rw-r--r--"));
+        } else {
+            f.toFile().setExecutable(executable, false);
+        }
+    }
+
+    /** Deletes a file or folder tree if it exists. */
+    static void deleteTree(Path p) throws IOException {
+        if (!Files.exists(p, java.nio.file.LinkOption.NOFOLLOW_LINKS)) {
+            return;
+        }
+        Files.walkFileTree(p, new SimpleFileVisitor<>() {
+            @Override
+            public FileVisitResult visitFile(Path file, BasicFileAttributes attrs) throws IOException {
+                Files.delete(file);
+                return FileVisitResult.CONTINUE;
+            }
+
+            @Override
+            public FileVisitResult postVisitDirectory(Path dir, IOException exc) throws IOException {
+                Files.delete(dir);
+                return FileVisitResult.CONTINUE;
+            }
+        });
+    }
+}

@@ -1,0 +1,606 @@
+package raylab.grade;
+
+import java.awt.image.BufferedImage;
+import java.io.ByteArrayOutputStream;
+import java.io.IOException;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.time.Duration;
+import java.util.ArrayList;
+import java.util.LinkedHashMap;
+import java.util.List;
+import java.util.Map;
+import java.util.concurrent.ExecutorService;
+import java.util.concurrent.Executors;
+import java.util.concurrent.Future;
+import java.util.function.Consumer;
+import java.util.stream.Stream;
+
+import javax.imageio.ImageIO;
+
+import raylab.course.Assignment;
+import raylab.course.Assignments;
+import raylab.course.JavaBuild;
+import raylab.course.MilestoneBuild;
+import raylab.course.TestLauncher;
+import raylab.course.TestResult;
+import raylab.grade.GradeReport.Kind;
+import raylab.render.ImageCompare;
+import raylab.render.PngFiles;
+
+/**
+ * The autograder. For each milestone M: the student's file(s) of M only are compiled over the
+ * framework and the reference solutions of the other milestones, and M's visible, hidden and
+ * data-case tests (the grader's own copies) run on that in a separate JVM with memory and time
+ * limits; M's scenes are rendered the same way and compared with their reference images. The
+ * list of tests and their points comes from the grader (tests run on the reference); a test
+ * scores only when the grader received its pass.
+ */
+public final class Grader {
+    /**
+     * Grading options.
+     *
+     * @param root        the instructor's project root (assignments/, tests, scenes)
+     * @param milestones  milestone ids to grade (empty: all)
+     * @param limits      limits of each test JVM
+     * @param sceneLimit  time limit of one scene render
+     * @param sceneHeapMb heap of a render JVM
+     * @param cacheDir    where built grader classes are cached
+     * @param sandboxUser unprivileged user for student code when root (null: default, "": none)
+     * @param parallel    milestones graded at the same time
+     */
+    public record Options(Path root, List<String> milestones, TestLauncher.Limits limits, Duration sceneLimit,
+            int sceneHeapMb, Path cacheDir, String sandboxUser, int parallel) {
+        public static Options defaults(Path root) {
+            return new Options(root, List.of(), new TestLauncher.Limits(512, Duration.ofSeconds(120), 10, 16 * 1024),
+                    Duration.ofSeconds(60), 512, root.resolve("target/grader-cache"), null,
+                    Math.max(1, Math.min(2, Runtime.getRuntime().availableProcessors())));
+        }
+
+        public Options withMilestones(List<String> m) {
+            return new Options(root, m, limits, sceneLimit, sceneHeapMb, cacheDir, sandboxUser, parallel);
+        }
+
+        public Options withLimits(TestLauncher.Limits l, Duration scene) {
+            return new Options(root, milestones, l, scene, sceneHeapMb, cacheDir, sandboxUser, parallel);
+        }
+
+        public Options withSandboxUser(String u) {
+            return new Options(root, milestones, limits, sceneLimit, sceneHeapMb, cacheDir, u, parallel);
+        }
+
+        public Options withCache(Path c) {
+            return new Options(root, milestones, limits, sceneLimit, sceneHeapMb, c, sandboxUser, parallel);
+        }
+    }
+
+    private final Options options;
+    private final Consumer<String> log;
+
+    public Grader(Options options, Consumer<String> log) {
+        this.options = options;
+        this.log = log;
+    }
+
+    /**
+     * Grades a submission (directory or zip). Never throws for a bad submission: problems become
+     * zero scores with explanations. Throws IOException only when the grader itself cannot work
+     * (the caller still writes a results file, see {@link #failed}).
+     */
+    public GradeReport grade(Path submission) throws IOException {
+        long t0 = System.nanoTime();
+        Path root = options.root().toAbsolutePath();
+        Assignments all = Assignments.load(root);
+        List<Assignment> selected = new ArrayList<>();
+        for (Assignment a : all.all()) {
+            if (options.milestones().isEmpty() || options.milestones().contains(a.id())) {
+                selected.add(a);
+            }
+        }
+        for (String m : options.milestones()) {
+            if (all.byId(m).isEmpty()) {
+                throw new IOException("no milestone '" + m + "' (milestones: " + String.join(", ", all.ids()) + ")");
+            }
+        }
+        List<String> notes = new ArrayList<>();
+        Sandbox sandbox = Sandbox.detect(options.sandboxUser(), s -> {
+            notes.add(s);
+            log.accept(s);
+        });
+        GraderSetup setup = GraderSetup.prepare(root, selected, options.cacheDir().toAbsolutePath(), log);
+        notes.addAll(setup.notes);
+        if (sandbox.active() && !traversableByAll(setup.dir)) {
+            String w = "sandbox: the grader cache " + setup.dir + " is not readable by " + sandbox.user()
+                    + " (a parent directory is not world-executable): student code cannot run; use --cache on a readable path";
+            notes.add(w);
+            log.accept(w);
+        }
+
+        Submission read;
+        try {
+            read = Submission.read(submission, all.all());
+        } catch (IOException e) {
+            read = Submission.unreadable(e.getMessage());
+            notes.add("the submission could not be read: " + e.getMessage());
+        }
+        final Submission sub = read;
+        List<String> accepted = new ArrayList<>();
+        sub.files().keySet().forEach(k -> accepted.add(k + " <- " + sub.sources().get(k)));
+        List<String> ignored = new ArrayList<>(sub.ignored());
+
+        Path work = Files.createTempDirectory("raylab-grade");
+        Map<String, GradeReport.Milestone> results = new LinkedHashMap<>();
+        ExecutorService pool = Executors.newFixedThreadPool(Math.max(1, options.parallel()));
+        try {
+            // The scenes without their reference images: student code cannot copy a reference.
+            Path scenesCopy = work.resolve("scenes");
+            copyScenes(root.resolve("scenes"), scenesCopy);
+            Sandbox.readableByAll(work);
+            Map<String, Future<GradeReport.Milestone>> futures = new LinkedHashMap<>();
+            for (Assignment a : selected) {
+                futures.put(a.id(), pool.submit(() -> gradeMilestone(a, sub, setup, work, scenesCopy, sandbox, ignored)));
+            }
+            for (Assignment a : selected) {
+                try {
+                    results.put(a.id(), futures.get(a.id()).get());
+                } catch (Exception e) {
+                    Throwable c = e.getCause() == null ? e : e.getCause();
+                    results.put(a.id(), zeroed(a, setup, "the grader could not grade this milestone: " + c));
+                }
+            }
+        } finally {
+            pool.shutdownNow();
+            // Milestones run side by side as the same user: processes they left are killed here, at the end.
+            sandbox.killAll();
+            GraderSetup.deleteTree(work);
+        }
+        return new GradeReport(List.copyOf(results.values()), accepted, ignored, notes,
+                (System.nanoTime() - t0) / 1e9);
+    }
+
+    private static boolean traversableByAll(Path dir) {
+        try {
+            for (Path p = dir.toAbsolutePath(); p != null; p = p.getParent()) {
+                if (!Files.getPosixFilePermissions(p).contains(java.nio.file.attribute.PosixFilePermission.OTHERS_EXECUTE)) {
+                    return false;
+                }
+            }
+            return true;
+        } catch (IOException | UnsupportedOperationException e) {
+            return true;
+        }
+    }
+
+    private static void copyScenes(Path from, Path to) throws IOException {
+        try (Stream<Path> s = Files.walk(from)) {
+            for (Path p : (Iterable<Path>) s::iterator) {
+                Path rel = from.relativize(p);
+                if (rel.toString().equals("reference") || rel.startsWith("reference")) {
+                    continue;
+                }
+                Path t = to.resolve(rel.toString());
+                if (Files.isDirectory(p)) {
+                    Files.createDirectories(t);
+                } else if (Files.isRegularFile(p)) {
+                    Files.copy(p, t);
+                }
+            }
+        }
+    }
+
+    /** A report for a grading that could not run at all: score 0 and the reason. */
+    public static GradeReport failed(String why, double seconds) {
+        return new GradeReport(List.of(), List.of(), List.of(), List.of("grading failed: " + why), seconds);
+    }
+
+    private GradeReport.Milestone gradeMilestone(Assignment a, Submission sub, GraderSetup setup, Path work,
+            Path scenesCopy, Sandbox sandbox, List<String> ignored) throws IOException {
+        Path mdir = work.resolve(a.id());
+        Files.createDirectories(mdir);
+        List<String> notes = new ArrayList<>();
+        List<String> missing = a.files().stream().map(Assignment.StudentFile::path)
+                .filter(p -> !sub.files().containsKey(p)).toList();
+        if (!missing.isEmpty()) {
+            String names = String.join(", ", missing.stream().map(p -> p.substring(p.lastIndexOf('/') + 1)).toList());
+            String todo = String.join(", ", a.files().stream().flatMap(f -> f.methods().stream()).toList());
+            return zeroed(a, setup, "no " + names + " was submitted: write " + todo + " (" + a.folder() + ")");
+        }
+        // Compile the student's file(s) of this milestone over the framework and the other references.
+        Path overlay = mdir.resolve("overlay");
+        List<Path> below = new ArrayList<>();
+        for (var e : setup.references.entrySet()) {
+            if (!e.getKey().equals(a.id())) {
+                below.add(e.getValue());
+            }
+        }
+        // References of milestones not selected are still needed by this milestone's code.
+        Path otherRefs = mdir.resolve("other-refs");
+        below.add(otherRefs);
+        copyOtherReferences(a, setup, otherRefs);
+        below.add(setup.framework);
+        below.addAll(setup.libraries);
+        Map<String, String> files = new LinkedHashMap<>();
+        for (Assignment.StudentFile f : a.files()) {
+            files.put(f.path().substring("src/main/java/".length()), sub.files().get(f.path()));
+        }
+        JavaBuild.Result compiled = MilestoneBuild.compileOverlay(files, mdir.resolve("src"), below, overlay);
+        if (!compiled.success()) {
+            StringBuilder msg = new StringBuilder("your code does not compile, so this milestone scores 0:");
+            for (JavaBuild.Problem p : compiled.errors().stream().limit(10).toList()) {
+                String file = p.file() == null ? "" : mdir.resolve("src").relativize(p.file()).toString();
+                msg.append("\n  ").append(file.isEmpty() ? "" : "src/main/java/" + file + ":" + p.line() + ": ")
+                        .append(p.message());
+            }
+            return zeroed(a, setup, msg.toString());
+        }
+        List<Path> lower = new ArrayList<>(below);
+        lower.add(setup.tests);
+        for (String removed : checkOverlay(a, overlay, lower)) {
+            notes.add(removed);
+            synchronized (ignored) {
+                ignored.add(removed);
+            }
+        }
+        Sandbox.readableByAll(mdir);
+        List<GradeReport.Test> tests = new ArrayList<>();
+        // Tests.
+        List<TestResult> expected = setup.expected.get(a.id());
+        Map<String, TestResult> got = new LinkedHashMap<>();
+        if (!expected.isEmpty()) {
+            Path run = mdir.resolve("run");
+            Files.createDirectories(run);
+            sandbox.giveTo(run);
+            // The grader's tests first: nothing the student wrote can replace them.
+            List<Path> cp = new ArrayList<>();
+            cp.add(setup.tests);
+            cp.add(overlay);
+            cp.addAll(below);
+            TestLauncher.Outcome o = TestLauncher.run(cp, setup.tests, List.of(), setup.testClasses.get(a.id()),
+                    options.limits(), run, expected, sandbox.wrapper());
+            for (TestResult r : o.results()) {
+                got.put(r.id(), r);
+            }
+            if (!o.finished() && !o.problem().isEmpty()) {
+                notes.add("the test run did not finish: " + o.problem());
+            }
+        }
+        tests.addAll(scoreTests(a, setup, expected, got));
+        // Scenes.
+        tests.addAll(gradeScenes(a, overlay, below, setup, mdir, scenesCopy, sandbox));
+        return new GradeReport.Milestone(a.id(), a.title(), notes, tests);
+    }
+
+    private void copyOtherReferences(Assignment a, GraderSetup setup, Path out) throws IOException {
+        Files.createDirectories(out);
+        List<Assignment> all = Assignments.load(options.root().toAbsolutePath()).all();
+        List<String> prefixes = new ArrayList<>();
+        for (Assignment o : all) {
+            if (!o.id().equals(a.id()) && !setup.references.containsKey(o.id())) {
+                o.files().forEach(f -> prefixes.add(GraderSetup.classPrefix(f.path())));
+            }
+        }
+        if (prefixes.isEmpty()) {
+            return;
+        }
+        Path code = GraderSetup.codeSource();
+        if (Files.isDirectory(code)) {
+            try (Stream<Path> s = Files.walk(code)) {
+                for (Path p : (Iterable<Path>) s.filter(Files::isRegularFile)::iterator) {
+                    String name = code.relativize(p).toString().replace('\\', '/');
+                    if (prefixes.stream().anyMatch(x -> GraderSetup.isClassOf(name, x))) {
+                        Path t = out.resolve(name);
+                        Files.createDirectories(t.getParent());
+                        Files.copy(p, t);
+                    }
+                }
+            }
+        } else {
+            try (var jar = new java.util.jar.JarFile(code.toFile())) {
+                for (var e : (Iterable<java.util.jar.JarEntry>) jar.stream()::iterator) {
+                    if (prefixes.stream().anyMatch(x -> GraderSetup.isClassOf(e.getName(), x))) {
+                        Path t = out.resolve(e.getName());
+                        Files.createDirectories(t.getParent());
+                        try (var in = jar.getInputStream(e)) {
+                            Files.copy(in, t);
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /**
+     * Removes class files the student's file produced that are not its own classes and would
+     * shadow a class of the framework, a library or another milestone.
+     */
+    private static List<String> checkOverlay(Assignment a, Path overlay, List<Path> below) throws IOException {
+        List<String> prefixes = a.files().stream().map(f -> GraderSetup.classPrefix(f.path())).toList();
+        List<String> removed = new ArrayList<>();
+        List<Path> classFiles;
+        try (Stream<Path> s = Files.walk(overlay)) {
+            classFiles = s.filter(Files::isRegularFile).toList();
+        }
+        try (java.net.URLClassLoader lower = new java.net.URLClassLoader(below.stream().map(p -> {
+            try {
+                return p.toUri().toURL();
+            } catch (java.net.MalformedURLException e) {
+                throw new IllegalStateException(e);
+            }
+        }).toArray(java.net.URL[]::new), null)) {
+            for (Path p : classFiles) {
+                String name = overlay.relativize(p).toString().replace('\\', '/');
+                boolean own = prefixes.stream().anyMatch(x -> GraderSetup.isClassOf(name, x));
+                String pkg = name.contains("/") ? name.substring(0, name.lastIndexOf('/') + 1) : "";
+                boolean samePackage = prefixes.stream().anyMatch(x -> x.startsWith(pkg) && x.indexOf('/', pkg.length()) < 0);
+                if (own) {
+                    continue;
+                }
+                if (samePackage && lower.findResource(name) == null && !name.startsWith("java")) {
+                    continue; // a helper class of the student's own, shadowing nothing
+                }
+                Files.delete(p);
+                removed.add(name.replace(".class", "").replace('/', '.') + ": a class declared in "
+                        + String.join(", ", a.files().stream().map(f -> f.path().substring(f.path().lastIndexOf('/') + 1)).toList())
+                        + " that would replace a framework class; ignored");
+            }
+        }
+        return removed;
+    }
+
+    /** Visibility and kind of the test class. */
+    private static Kind kindOf(Assignment a, String className) {
+        String outer = GraderSetup.outer(className);
+        if (outer.equals(DataCases.className(a.id()))) {
+            return Kind.CASE;
+        }
+        for (String v : a.tests().visible()) {
+            if (GraderSetup.testClassName(v).equals(outer)) {
+                return Kind.VISIBLE;
+            }
+        }
+        return Kind.HIDDEN;
+    }
+
+    /** Groups results per test method (parameterized invocations together) and scores them. */
+    private static List<GradeReport.Test> scoreTests(Assignment a, GraderSetup setup, List<TestResult> expected,
+            Map<String, TestResult> got) {
+        Map<String, List<TestResult>> groups = new LinkedHashMap<>();
+        for (TestResult e : expected) {
+            groups.computeIfAbsent(e.className() + "#" + e.method(), k -> new ArrayList<>()).add(e);
+        }
+        long visibleCount = groups.values().stream().filter(g -> kindOf(a, g.get(0).className()) == Kind.VISIBLE).count();
+        long hiddenCount = groups.values().stream().filter(g -> kindOf(a, g.get(0).className()) == Kind.HIDDEN).count();
+        Map<String, DataCases.Case> cases = new LinkedHashMap<>();
+        for (DataCases.Case c : setup.cases.getOrDefault(a.id(), List.of())) {
+            cases.put(c.method(), c);
+        }
+        List<GradeReport.Test> out = new ArrayList<>();
+        for (List<TestResult> g : groups.values()) {
+            TestResult first = g.get(0);
+            Kind kind = kindOf(a, first.className());
+            double points;
+            String visibility;
+            String name = simple(first.className()) + "." + first.method();
+            if (kind == Kind.VISIBLE) {
+                points = (double) a.tests().visiblePoints() / visibleCount;
+                visibility = "visible";
+            } else if (kind == Kind.HIDDEN) {
+                points = (double) a.tests().hiddenPoints() / hiddenCount;
+                visibility = a.tests().hiddenVisibility();
+            } else {
+                DataCases.Case c = cases.get(first.method());
+                points = c == null ? 0 : c.points();
+                visibility = c == null ? a.tests().hiddenVisibility() : c.visibility();
+                name = "case " + (c == null ? first.method() : c.name());
+            }
+            boolean passed = true;
+            String message = "";
+            String output = "";
+            long ms = 0;
+            int failedCount = 0;
+            for (TestResult e : g) {
+                TestResult r = got.get(e.id());
+                if (r == null) {
+                    r = e.with(TestResult.Status.MISSING, "no result was reported for this test");
+                }
+                ms += r.millis();
+                if (!r.status().passed()) {
+                    failedCount++;
+                    if (passed) {
+                        message = explain(r, g.size() > 1 ? r.displayName() : null);
+                        output = r.output() == null ? "" : r.output();
+                    }
+                    passed = false;
+                }
+            }
+            if (failedCount > 1 && g.size() > 1) {
+                message = failedCount + " of " + g.size() + " cases failed; the first: " + message;
+            }
+            if (kind != Kind.VISIBLE) {
+                output = ""; // what hidden tests print stays hidden
+            }
+            String file = kind == Kind.CASE ? (cases.get(first.method()) == null ? "" : cases.get(first.method()).file())
+                    : testFile(a, first.className());
+            out.add(new GradeReport.Test(a.id(), name, kind, points, passed ? points : 0, passed, message, output,
+                    visibility, ms, file, null));
+        }
+        return out;
+    }
+
+    private static String testFile(Assignment a, String className) {
+        String outer = GraderSetup.outer(className);
+        for (String f : a.tests().visible()) {
+            if (GraderSetup.testClassName(f).equals(outer)) {
+                return f;
+            }
+        }
+        for (String f : a.tests().hidden()) {
+            if (GraderSetup.testClassName(f).equals(outer)) {
+                return f;
+            }
+        }
+        return "";
+    }
+
+    private static String simple(String className) {
+        return className.substring(className.lastIndexOf('.') + 1);
+    }
+
+    private static String explain(TestResult r, String invocation) {
+        String base = switch (r.status()) {
+            case FAILED -> r.message();
+            case TIMED_OUT -> "timed out: " + (r.message() == null || r.message().isBlank()
+                    ? "the test took longer than allowed (an endless loop?)" : r.message());
+            case CRASHED -> "crashed: " + r.message() + " (System.exit, running out of memory or a JVM crash; "
+                    + "tests after it could not run)";
+            case MISSING -> "not run: " + r.message() + ". Tests that the grader did not see pass score 0: look for "
+                    + "System.exit, an exception while loading your class, an endless loop, or running out of memory";
+            case ABORTED -> "aborted: " + r.message();
+            case PASSED -> "";
+        };
+        return invocation == null ? base : "[" + invocation + "] " + base;
+    }
+
+    /** Renders the milestone's scenes in one child JVM and compares each with its reference. */
+    private List<GradeReport.Test> gradeScenes(Assignment a, Path overlay, List<Path> below, GraderSetup setup,
+            Path mdir, Path scenesCopy, Sandbox sandbox) throws IOException {
+        List<GradeReport.Test> out = new ArrayList<>();
+        if (a.scenes().isEmpty()) {
+            return out;
+        }
+        Path root = options.root().toAbsolutePath();
+        Path run = Files.createDirectories(mdir.resolve("render"));
+        sandbox.giveTo(run);
+        List<String> cmd = new ArrayList<>(sandbox.wrapper());
+        List<Path> cp = new ArrayList<>();
+        cp.add(setup.tests);
+        cp.add(overlay);
+        cp.addAll(below);
+        cmd.addAll(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
+                "-Xmx" + options.sceneHeapMb() + "m", "-Djava.awt.headless=true", "-cp",
+                String.join(java.io.File.pathSeparator, cp.stream().map(Path::toString).toList()),
+                "raylab.hidden.RenderMany"));
+        List<Path> pngs = new ArrayList<>();
+        for (int i = 0; i < a.scenes().size(); i++) {
+            Assignment.GradedScene sc = a.scenes().get(i);
+            Path scene = scenesCopy.resolve(root.resolve("scenes").relativize(root.resolve(sc.scene())).toString());
+            Path png = run.resolve("scene" + i + ".png");
+            cmd.add(scene.toString());
+            cmd.add(png.toString());
+            pngs.add(png);
+        }
+        long t0 = System.nanoTime();
+        ProcessBuilder pb = new ProcessBuilder(cmd).directory(run.toFile())
+                .redirectOutput(ProcessBuilder.Redirect.DISCARD).redirectError(ProcessBuilder.Redirect.DISCARD);
+        pb.environment().keySet().removeIf(k -> k.startsWith("JAVA_TOOL") || k.startsWith("_JAVA_OPTIONS")
+                || k.equals("JDK_JAVA_OPTIONS"));
+        Process p = pb.start();
+        Duration limit = options.sceneLimit().multipliedBy(a.scenes().size());
+        boolean timedOut = false;
+        try {
+            if (!p.waitFor(limit.toMillis(), java.util.concurrent.TimeUnit.MILLISECONDS)) {
+                timedOut = true;
+            }
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+            timedOut = true;
+        }
+        p.descendants().forEach(ProcessHandle::destroyForcibly);
+        p.destroyForcibly();
+        try {
+            p.waitFor(5, java.util.concurrent.TimeUnit.SECONDS);
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+        }
+        long ms = (System.nanoTime() - t0) / 1_000_000 / a.scenes().size();
+        for (int i = 0; i < a.scenes().size(); i++) {
+            Assignment.GradedScene sc = a.scenes().get(i);
+            String name = "scene " + Path.of(sc.scene()).getFileName();
+            Path png = pngs.get(i);
+            Path refFile = referenceImage(sc);
+            byte[] refBytes = refFile == null ? null : Files.readAllBytes(refFile);
+            Path err = Path.of(png + ".err");
+            String errLine = Files.isRegularFile(err) ? GraderSetup.firstLine(new String(
+                    Files.readAllBytes(err), java.nio.charset.StandardCharsets.UTF_8)).replaceFirst("^raylab: ", "") : "";
+            String msg;
+            GradeReport.Images images = null;
+            boolean passed = false;
+            if (refBytes == null) {
+                msg = "grader setup problem: no reference image " + sc.reference();
+            } else if (!Files.isRegularFile(png) || Files.isRegularFile(err)) {
+                msg = !errLine.isEmpty() ? "the render failed: " + errLine
+                        : timedOut ? "the renders took longer than " + limit.toSeconds()
+                                + " s and were stopped (an endless loop?)"
+                        : "no image was rendered (the render JVM ended early: System.exit, a crash or out of memory)";
+                images = new GradeReport.Images(null, refBytes, null, "");
+            } else {
+                byte[] mine = Files.readAllBytes(png);
+                try {
+                    BufferedImage img = PngFiles.read(png);
+                    BufferedImage ref = PngFiles.read(refFile);
+                    ImageCompare.Result c = ImageCompare.compare(img, ref);
+                    passed = c.matches(sc.tolerance());
+                    String metric = c.summary() + "; allowed: " + String.format(java.util.Locale.ROOT, "%.3f%%",
+                            100 * sc.tolerance());
+                    msg = passed ? "" : "the image differs from the reference: " + metric
+                            + " (open report.html to see where)";
+                    images = new GradeReport.Images(mine, refBytes, png(c.diff()), metric);
+                } catch (IOException | RuntimeException e) {
+                    msg = "the rendered image could not be compared: " + e.getMessage();
+                    images = new GradeReport.Images(null, refBytes, null, "");
+                }
+            }
+            out.add(new GradeReport.Test(a.id(), name, Kind.SCENE, sc.points(), passed ? sc.points() : 0, passed, msg,
+                    "", "visible", ms, sc.scene(), images));
+        }
+        return out;
+    }
+
+    /** The reference PNG, rendered with the reference solution (trusted) if it is not there yet. */
+    private Path referenceImage(Assignment.GradedScene sc) throws IOException {
+        Path root = options.root().toAbsolutePath();
+        Path ref = root.resolve(sc.reference());
+        if (Files.isRegularFile(ref)) {
+            return ref;
+        }
+        Path cached = options.cacheDir().toAbsolutePath().resolve("references").resolve(sc.reference());
+        synchronized (Grader.class) {
+            if (!Files.isRegularFile(cached)) {
+                log.accept("grader: " + sc.reference() + " is missing; rendering it with the reference solution"
+                        + " (make it with ./raylab reference " + sc.scene() + ")");
+                Files.createDirectories(cached.getParent());
+                Path tmp = Files.createTempDirectory(cached.getParent(), "ref");
+                Path out = tmp.resolve("ref.png");
+                MilestoneBuild.RenderOutcome o = MilestoneBuild.renderInChild(GraderSetup.ownClassPath(),
+                        root.resolve(sc.scene()), out, Duration.ofMinutes(5), 1024, tmp);
+                if (o.exitStatus() != 0 || !Files.isRegularFile(out)) {
+                    GraderSetup.deleteTree(tmp);
+                    return null;
+                }
+                Files.move(out, cached, java.nio.file.StandardCopyOption.REPLACE_EXISTING);
+                GraderSetup.deleteTree(tmp);
+            }
+        }
+        return cached;
+    }
+
+    static byte[] png(BufferedImage img) throws IOException {
+        ByteArrayOutputStream b = new ByteArrayOutputStream();
+        ImageIO.write(img, "png", b);
+        return b.toByteArray();
+    }
+
+    /** Every graded item of a milestone at zero, with one explanation. */
+    private static GradeReport.Milestone zeroed(Assignment a, GraderSetup setup, String why) {
+        List<GradeReport.Test> tests = new ArrayList<>();
+        for (GradeReport.Test t : scoreTests(a, setup, setup.expected.getOrDefault(a.id(), List.of()), Map.of())) {
+            tests.add(new GradeReport.Test(t.milestone(), t.name(), t.kind(), t.maxScore(), 0, false, why, "",
+                    t.visibility(), 0, t.file(), null));
+        }
+        for (Assignment.GradedScene sc : a.scenes()) {
+            tests.add(new GradeReport.Test(a.id(), "scene " + Path.of(sc.scene()).getFileName(), Kind.SCENE,
+                    sc.points(), 0, false, why, "", "visible", 0, sc.scene(), null));
+        }
+        return new GradeReport.Milestone(a.id(), a.title(), List.of(why), tests);
+    }
+}

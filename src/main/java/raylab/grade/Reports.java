@@ -1,0 +1,310 @@
+package raylab.grade;
+
+import java.io.IOException;
+import java.io.PrintStream;
+import java.nio.charset.StandardCharsets;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.nio.file.StandardCopyOption;
+import java.util.ArrayList;
+import java.util.Base64;
+import java.util.LinkedHashMap;
+import java.util.List;
+import java.util.Locale;
+import java.util.Map;
+
+import com.fasterxml.jackson.databind.ObjectMapper;
+import com.fasterxml.jackson.databind.SerializationFeature;
+
+import raylab.grade.GradeReport.Kind;
+
+/**
+ * Writes a {@link GradeReport} in the formats course staff use: Gradescope's results.json,
+ * the GitHub Classroom autograding runner result (classroom.json, and classroom.b64 for a
+ * step output), JUnit XML, a self-contained HTML report, and a console table. Each file is
+ * written to a temporary name and renamed, so a reader never sees half a file.
+ */
+public final class Reports {
+    private static final ObjectMapper JSON = new ObjectMapper().enable(SerializationFeature.INDENT_OUTPUT);
+
+    /** Every output file name the grader writes into the output directory. */
+    public static final List<String> FILES = List.of("results.json", "classroom.json", "classroom.b64", "junit.xml",
+            "report.html");
+
+    private Reports() {
+    }
+
+    /** Writes all files into {@code out}. */
+    public static void writeAll(GradeReport r, Path out) throws IOException {
+        Files.createDirectories(out);
+        write(out.resolve("results.json"), gradescope(r));
+        String classroom = classroom(r);
+        write(out.resolve("classroom.json"), classroom);
+        write(out.resolve("classroom.b64"), Base64.getEncoder().encodeToString(classroom.getBytes(StandardCharsets.UTF_8)));
+        write(out.resolve("junit.xml"), junitXml(r));
+        write(out.resolve("report.html"), html(r));
+    }
+
+    static void write(Path target, String text) throws IOException {
+        Path tmp = Files.createTempFile(target.getParent(), "." + target.getFileName(), ".tmp");
+        try {
+            Files.writeString(tmp, text, StandardCharsets.UTF_8);
+            try {
+                Files.setPosixFilePermissions(tmp, java.nio.file.attribute.PosixFilePermissions.fromString("rw-r--r--"));
+            } catch (UnsupportedOperationException notPosix) {
+                // keep the default
+            }
+            Files.move(tmp, target, StandardCopyOption.REPLACE_EXISTING, StandardCopyOption.ATOMIC_MOVE);
+        } finally {
+            Files.deleteIfExists(tmp);
+        }
+    }
+
+    private static String fmt(double v) {
+        String s = String.format(Locale.ROOT, "%.2f", v);
+        return s.endsWith(".00") ? s.substring(0, s.length() - 3) : s;
+    }
+
+    /** A summary for the top of every report. */
+    static String summary(GradeReport r) {
+        StringBuilder b = new StringBuilder();
+        b.append("Score: ").append(fmt(r.score())).append(" / ").append(fmt(r.maxScore())).append('\n');
+        for (GradeReport.Milestone m : r.milestones()) {
+            b.append(String.format(Locale.ROOT, "  %-10s %6s / %-6s %s%n", m.id(), fmt(m.score()), fmt(m.maxScore()),
+                    m.title()));
+            for (String n : m.notes()) {
+                b.append("      ").append(n.replace("\n", "\n      ")).append('\n');
+            }
+        }
+        if (!r.accepted().isEmpty()) {
+            b.append("Graded files:\n");
+            r.accepted().forEach(a -> b.append("  ").append(a).append('\n'));
+        }
+        if (!r.ignored().isEmpty()) {
+            b.append("Ignored (only the files of the assignments are graded):\n");
+            r.ignored().stream().limit(50).forEach(a -> b.append("  ").append(a).append('\n'));
+            if (r.ignored().size() > 50) {
+                b.append("  ... and ").append(r.ignored().size() - 50).append(" more\n");
+            }
+        }
+        for (String n : r.notes()) {
+            b.append(n).append('\n');
+        }
+        return b.toString();
+    }
+
+    /** Gradescope's results.json. */
+    public static String gradescope(GradeReport r) throws IOException {
+        Map<String, Object> root = new LinkedHashMap<>();
+        root.put("score", r.score());
+        root.put("execution_time", Math.round(r.seconds()));
+        root.put("output", summary(r));
+        root.put("visibility", "visible");
+        root.put("stdout_visibility", "hidden");
+        List<Map<String, Object>> tests = new ArrayList<>();
+        int mi = 0;
+        for (GradeReport.Milestone m : r.milestones()) {
+            mi++;
+            int ti = 0;
+            for (GradeReport.Test t : m.tests()) {
+                ti++;
+                Map<String, Object> j = new LinkedHashMap<>();
+                j.put("name", m.id() + ": " + t.name() + " (" + t.kind().label() + ")");
+                j.put("number", mi + "." + ti);
+                j.put("score", t.score());
+                j.put("max_score", t.maxScore());
+                j.put("status", t.passed() ? "passed" : "failed");
+                String out = t.passed() ? "" : t.message();
+                if (t.images() != null && !t.images().metric().isEmpty() && t.passed()) {
+                    out = t.images().metric();
+                }
+                if (!t.output().isBlank()) {
+                    out += (out.isEmpty() ? "" : "\n\n") + "Output:\n" + t.output();
+                }
+                j.put("output", out);
+                j.put("tags", List.of(m.id(), t.kind().label()));
+                j.put("visibility", t.visibility());
+                tests.add(j);
+            }
+        }
+        root.put("tests", tests);
+        return JSON.writeValueAsString(root);
+    }
+
+    /**
+     * The GitHub Classroom autograding runner result, as the classroom-resources runners emit it
+     * (base64-encoded in their {@code result} output) and autograding-grading-reporter reads it.
+     */
+    public static String classroom(GradeReport r) throws IOException {
+        Map<String, Object> root = new LinkedHashMap<>();
+        root.put("version", 1);
+        boolean allPassed = r.milestones().stream().allMatch(m -> m.tests().stream().allMatch(GradeReport.Test::passed));
+        root.put("status", r.milestones().isEmpty() ? "error" : allPassed ? "pass" : "fail");
+        root.put("max_score", r.maxScore());
+        List<Map<String, Object>> tests = new ArrayList<>();
+        for (GradeReport.Milestone m : r.milestones()) {
+            for (GradeReport.Test t : m.tests()) {
+                Map<String, Object> j = new LinkedHashMap<>();
+                j.put("name", m.id() + ": " + t.name());
+                j.put("status", t.passed() ? "pass" : "fail");
+                j.put("score", GradeReport.round(t.score()));
+                j.put("message", t.kind() == Kind.HIDDEN ? (t.passed() ? "" : "a hidden test failed") : t.message());
+                j.put("test_code", t.kind().label() + " test of milestone " + m.id());
+                j.put("filename", t.file());
+                j.put("line_no", 0);
+                j.put("execution_time", String.format(Locale.ROOT, "%.3fs", t.millis() / 1000.0));
+                tests.add(j);
+            }
+        }
+        root.put("tests", tests);
+        return JSON.writeValueAsString(root);
+    }
+
+    static String xml(String s) {
+        if (s == null) {
+            return "";
+        }
+        StringBuilder b = new StringBuilder();
+        for (char c : s.toCharArray()) {
+            switch (c) {
+                case '<' -> b.append("&lt;");
+                case '>' -> b.append("&gt;");
+                case '&' -> b.append("&amp;");
+                case '"' -> b.append("&quot;");
+                case '\'' -> b.append("&#39;");
+                default -> {
+                    if (c < 0x20 && c != '\n' && c != '\t' && c != '\r') {
+                        b.append('?');
+                    } else {
+                        b.append(c);
+                    }
+                }
+            }
+        }
+        return b.toString();
+    }
+
+    /** JUnit XML: one testsuite per milestone. */
+    public static String junitXml(GradeReport r) {
+        StringBuilder b = new StringBuilder("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
+        long failures = r.milestones().stream().flatMap(m -> m.tests().stream()).filter(t -> !t.passed()).count();
+        long total = r.milestones().stream().mapToLong(m -> m.tests().size()).sum();
+        b.append("<testsuites name=\"raylab\" tests=\"").append(total).append("\" failures=\"").append(failures)
+                .append("\" time=\"").append(String.format(Locale.ROOT, "%.3f", r.seconds())).append("\">\n");
+        for (GradeReport.Milestone m : r.milestones()) {
+            long f = m.tests().stream().filter(t -> !t.passed()).count();
+            b.append("  <testsuite name=\"").append(xml(m.id())).append("\" tests=\"").append(m.tests().size())
+                    .append("\" failures=\"").append(f).append("\">\n");
+            b.append("    <properties><property name=\"score\" value=\"").append(fmt(m.score()))
+                    .append("\"/><property name=\"max_score\" value=\"").append(fmt(m.maxScore())).append("\"/></properties>\n");
+            for (GradeReport.Test t : m.tests()) {
+                b.append("    <testcase classname=\"").append(xml(m.id() + "." + t.kind().label())).append("\" name=\"")
+                        .append(xml(t.name())).append("\" time=\"")
+                        .append(String.format(Locale.ROOT, "%.3f", t.millis() / 1000.0)).append("\">");
+                if (!t.passed()) {
+                    String first = GraderSetup.firstLine(t.message());
+                    b.append("\n      <failure message=\"").append(xml(first)).append("\">").append(xml(t.message()))
+                            .append("</failure>\n    ");
+                }
+                b.append("</testcase>\n");
+            }
+            b.append("  </testsuite>\n");
+        }
+        b.append("</testsuites>\n");
+        return b.toString();
+    }
+
+    /** The console table. */
+    public static void table(GradeReport r, PrintStream out) {
+        out.println(String.format(Locale.ROOT, "%-10s %-9s %-52s %7s  %s", "milestone", "kind", "test", "points", "result"));
+        for (GradeReport.Milestone m : r.milestones()) {
+            for (GradeReport.Test t : m.tests()) {
+                String name = t.name().length() > 52 ? t.name().substring(0, 49) + "..." : t.name();
+                out.println(String.format(Locale.ROOT, "%-10s %-9s %-52s %7s  %s", m.id(), t.kind().label(), name,
+                        fmt(t.score()) + "/" + fmt(t.maxScore()),
+                        t.passed() ? "pass" : "FAIL: " + clip(GraderSetup.firstLine(t.message()), 100)));
+            }
+        }
+        out.println();
+        out.print(summary(r));
+    }
+
+    private static String clip(String s, int n) {
+        return s.length() <= n ? s : s.substring(0, n - 3) + "...";
+    }
+
+    private static String dataUri(byte[] png) {
+        return png == null ? null : "data:image/png;base64," + Base64.getEncoder().encodeToString(png);
+    }
+
+    /** One self-contained HTML page: per milestone the tests and messages, per scene three images. */
+    public static String html(GradeReport r) {
+        StringBuilder b = new StringBuilder();
+        b.append("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>raylab grade: ")
+                .append(fmt(r.score())).append(" / ").append(fmt(r.maxScore())).append("</title>\n<style>\n")
+                .append("body{font-family:sans-serif;margin:2em;max-width:1100px}table{border-collapse:collapse;width:100%}")
+                .append("td,th{border:1px solid #ccc;padding:4px 6px;vertical-align:top;text-align:left}")
+                .append(".pass{color:#16702e}.fail{color:#b00020}pre{white-space:pre-wrap;margin:0;font-size:90%}")
+                .append("figure{display:inline-block;margin:4px}img{image-rendering:pixelated;max-width:340px;border:1px solid #999}")
+                .append("</style></head><body>\n");
+        b.append("<h1>Score ").append(fmt(r.score())).append(" / ").append(fmt(r.maxScore())).append("</h1>\n");
+        b.append("<table><tr><th>milestone</th><th>score</th><th>title</th></tr>\n");
+        for (GradeReport.Milestone m : r.milestones()) {
+            b.append("<tr><td><a href=\"#").append(xml(m.id())).append("\">").append(xml(m.id())).append("</a></td><td>")
+                    .append(fmt(m.score())).append(" / ").append(fmt(m.maxScore())).append("</td><td>")
+                    .append(xml(m.title())).append("</td></tr>\n");
+        }
+        b.append("</table>\n");
+        if (!r.notes().isEmpty() || !r.ignored().isEmpty() || !r.accepted().isEmpty()) {
+            b.append("<h2>Submission</h2><pre>");
+            r.accepted().forEach(a -> b.append("graded: ").append(xml(a)).append('\n'));
+            r.ignored().forEach(a -> b.append("ignored: ").append(xml(a)).append('\n'));
+            r.notes().forEach(a -> b.append(xml(a)).append('\n'));
+            b.append("</pre>\n");
+        }
+        for (GradeReport.Milestone m : r.milestones()) {
+            b.append("<h2 id=\"").append(xml(m.id())).append("\">").append(xml(m.id())).append(": ").append(xml(m.title()))
+                    .append(" (").append(fmt(m.score())).append(" / ").append(fmt(m.maxScore())).append(")</h2>\n");
+            for (String n : m.notes()) {
+                b.append("<pre class=\"fail\">").append(xml(n)).append("</pre>\n");
+            }
+            b.append("<table><tr><th>test</th><th>kind</th><th>points</th><th>result</th></tr>\n");
+            for (GradeReport.Test t : m.tests()) {
+                b.append("<tr><td>").append(xml(t.name())).append("</td><td>").append(t.kind().label())
+                        .append(t.kind() == Kind.HIDDEN ? " (" + xml(t.visibility()) + ")" : "").append("</td><td>")
+                        .append(fmt(t.score())).append(" / ").append(fmt(t.maxScore())).append("</td><td class=\"")
+                        .append(t.passed() ? "pass\">pass" : "fail\">fail");
+                if (!t.passed()) {
+                    b.append("<pre>").append(xml(t.message())).append("</pre>");
+                }
+                if (!t.output().isBlank()) {
+                    b.append("<details><summary>output</summary><pre>").append(xml(t.output())).append("</pre></details>");
+                }
+                GradeReport.Images im = t.images();
+                if (im != null) {
+                    if (!im.metric().isEmpty()) {
+                        b.append("<div>").append(xml(im.metric())).append("</div>");
+                    }
+                    figure(b, "your render", im.student());
+                    figure(b, "reference", im.reference());
+                    figure(b, "difference (heatmap)", im.diff());
+                }
+                b.append("</td></tr>\n");
+            }
+            b.append("</table>\n");
+        }
+        b.append("<p>Graded in ").append(String.format(Locale.ROOT, "%.1f", r.seconds())).append(" s.</p></body></html>\n");
+        return b.toString();
+    }
+
+    private static void figure(StringBuilder b, String caption, byte[] png) {
+        String uri = dataUri(png);
+        b.append("<figure>");
+        if (uri == null) {
+            b.append("<div style=\"width:200px;height:60px;border:1px dashed #999\">(none)</div>");
+        } else {
+            b.append("<img alt=\"").append(caption).append("\" src=\"").append(uri).append("\">");
+        }
+        b.append("<figcaption>").append(caption).append("</figcaption></figure>");
+    }
+}
