@@ -116,11 +116,12 @@ final class BoxExperiment implements Experiment {
         for (int i = 0; i < rays.length; i++) {
             rays[i] = ray(0, rc);
         }
-        Timing.Stats[] cost = new Timing.Stats[2];
+        Timing.Work[] works = new Timing.Work[2];
         for (int m = 0; m < 2; m++) {
             int method = m;
-            cost[m] = study.timing.nanosPerOp(reps -> loop(method, box, rays, rec, reps), rays.length);
+            works[m] = reps -> loop(method, box, rays, rec, reps);
         }
+        Timing.Stats[] cost = study.timing.nanosPerOpInterleaved(works, rays.length);
 
         CategoryChart chart = Plots.bars("Box: wrong hit/miss answers", "rays", "wrong hit/miss (% of rays)");
         for (int m = 0; m < 2; m++) {
@@ -128,7 +129,7 @@ final class BoxExperiment implements Experiment {
             for (double w : wrong[m]) {
                 ys.add(w);
             }
-            Plots.bars(chart, METHODS[m], List.of(KINDS), ys);
+            Plots.bars(chart, METHODS[m] + (TriangleExperiment.max(wrong[m]) == 0 ? " (0 everywhere)" : ""), List.of(KINDS), ys);
         }
         Plots.save(chart, study.out, "box-wrong.png");
 

@@ -30,7 +30,11 @@ final class Plots {
     }
 
     static XYChart xy(String title, String xTitle, String yTitle, boolean logX, boolean logY) {
-        XYChart chart = new XYChartBuilder().width(WIDTH).height(HEIGHT).title(title)
+        return xy(WIDTH, title, xTitle, yTitle, logX, logY);
+    }
+
+    static XYChart xy(int width, String title, String xTitle, String yTitle, boolean logX, boolean logY) {
+        XYChart chart = new XYChartBuilder().width(width).height(HEIGHT).title(title)
                 .xAxisTitle(xTitle).yAxisTitle(yTitle).build();
         Styler s = chart.getStyler();
         style(s);
@@ -40,11 +44,18 @@ final class Plots {
         return chart;
     }
 
+    /** Puts the legend in one column to the right of the plot, for charts with many series. */
+    static void legendRight(org.knowm.xchart.internal.chartpart.Chart<?, ?> chart) {
+        chart.getStyler().setLegendPosition(Styler.LegendPosition.OutsideE);
+        chart.getStyler().setLegendLayout(Styler.LegendLayout.Vertical);
+    }
+
     static CategoryChart bars(String title, String xTitle, String yTitle) {
         CategoryChart chart = new CategoryChartBuilder().width(WIDTH).height(HEIGHT).title(title)
                 .xAxisTitle(xTitle).yAxisTitle(yTitle).build();
         style(chart.getStyler());
-        chart.getStyler().setLabelsVisible(true);
+        chart.getStyler().setLabelsVisible(false);
+        chart.getStyler().setYAxisDecimalPattern("#,##0.###");
         return chart;
     }
 

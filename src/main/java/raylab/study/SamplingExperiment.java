@@ -156,8 +156,8 @@ final class SamplingExperiment implements Experiment {
         r.conclude(String.format("**Sampling: use stratified.** It does the same work per sample as random and its"
                 + " error falls faster (slope %.2f against %.2f on log-log axes): it reaches random's %d-spp"
                 + " error with about %s spp. Time grows linearly with spp (%.3f s at 1 spp, %.3f s at %d spp here)."
-                + " The error drops below one 8-bit step (1/255) at about %s spp stratified, %s spp random: beyond"
-                + " that, more samples buy nothing visible.", slopeStrat, slopeRandom, spps[last],
+                + " The error drops below one 8-bit step (1/255) at about %s spp stratified, %s spp random: past"
+                + " that mark, more samples change little that an 8-bit image can show.", slopeStrat, slopeRandom, spps[last],
                 formatSpp(sppMatch), time[1][0].median(), time[1][last].median(), spps[last],
                 formatSpp(stratStep), formatSpp(randomStep)));
     }

@@ -119,11 +119,12 @@ final class SphereExperiment implements Experiment {
         Object[] set = setup(10, 4096, new SplittableRandom(Study.SEED + 1));
         Sphere[] spheres = (Sphere[]) set[0];
         Ray[] rays = (Ray[]) set[1];
-        Timing.Stats[] cost = new Timing.Stats[2];
+        Timing.Work[] works = new Timing.Work[2];
         for (int m = 0; m < 2; m++) {
             int method = m;
-            cost[m] = study.timing.nanosPerOp(reps -> loop(method, spheres, rays, rec, reps), rays.length);
+            works[m] = reps -> loop(method, spheres, rays, rec, reps);
         }
+        Timing.Stats[] cost = study.timing.nanosPerOpInterleaved(works, rays.length);
 
         XYChart w = Plots.xy("Sphere: wrong hit/miss answers against distance", "distance from ray origin to sphere (radii)",
                 "wrong hit/miss (% of rays)", true, false);

@@ -52,7 +52,8 @@ final class Timing {
     }
 
     String describe() {
-        return String.format("warm-up %.2f s, then %d runs of about %.0f ms each; median, min–max",
+        return String.format("warm-up %.2f s per method, then %d runs of about %.0f ms each, competing methods"
+                + " taking turns run by run; median, min–max",
                 warmupSeconds, runs, runSeconds * 1000);
     }
 
@@ -85,6 +86,49 @@ final class Timing {
             ns[i] = (double) (System.nanoTime() - t0) / ((double) reps * opsPerRep);
         }
         return Stats.of(ns);
+    }
+
+    /**
+     * Nanoseconds per operation of several competing methods, measured in turns: each is
+     * calibrated and warmed up, then run i of every method follows run i of the one before, so
+     * that a burst of load from elsewhere on the machine hits all of them alike.
+     */
+    Stats[] nanosPerOpInterleaved(Work[] works, long opsPerRep) {
+        int n = works.length;
+        int[] reps = new int[n];
+        for (int m = 0; m < n; m++) {
+            int r = 1;
+            long spent;
+            while (true) {
+                long t0 = System.nanoTime();
+                sink += works[m].run(r);
+                spent = System.nanoTime() - t0;
+                if (spent >= runSeconds * 1e9 / 4 || r >= 1 << 28) {
+                    break;
+                }
+                r *= 2;
+            }
+            reps[m] = (int) Math.max(1, Math.min(1L << 28, Math.round(r * runSeconds * 1e9 / Math.max(1, spent))));
+        }
+        long warmEnd = System.nanoTime() + (long) (warmupSeconds * 1e9 * n);
+        while (System.nanoTime() < warmEnd) {
+            for (int m = 0; m < n; m++) {
+                sink += works[m].run(reps[m]);
+            }
+        }
+        double[][] ns = new double[n][runs];
+        for (int i = 0; i < runs; i++) {
+            for (int m = 0; m < n; m++) {
+                long t0 = System.nanoTime();
+                sink += works[m].run(reps[m]);
+                ns[m][i] = (double) (System.nanoTime() - t0) / ((double) reps[m] * opsPerRep);
+            }
+        }
+        Stats[] out = new Stats[n];
+        for (int m = 0; m < n; m++) {
+            out[m] = Stats.of(ns[m]);
+        }
+        return out;
     }
 
     /** Seconds of a long task (a render, a build): {@code warmups} untimed runs, then {@code runs} timed. */
