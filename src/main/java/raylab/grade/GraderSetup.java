@@ -241,6 +241,13 @@ final class GraderSetup {
         if (Files.isRegularFile(renderMany)) {
             testSources.add(renderMany);
         }
+        // The student-facing assertion helpers are compiled here too, so that a copy compiled
+        // elsewhere (target/test-classes) is never needed at run time.
+        for (Path helper : JavaBuild.sourcesUnder(root.resolve("src/test/java/raylab/testing"))) {
+            if (!testSources.contains(helper)) {
+                testSources.add(helper);
+            }
+        }
         List<Path> sourcePath = Stream.of(root.resolve("src/test/java"), root.resolve("grader/tests"), gen)
                 .filter(Files::isDirectory).toList();
         compileWithSourcePath(testSources, sourcePath, GraderSetup.ownClassPath(), t.tests);

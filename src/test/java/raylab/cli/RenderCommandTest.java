@@ -117,4 +117,18 @@ class RenderCommandTest {
         Run outside = run("trace", "scenes/shadows.json", "--pixel", "400", "0");
         assertEquals(2, outside.status(), outside.err());
     }
+
+    @Test
+    void traceOnTheShowcaseExplainsAShadowedAndALitPixel() {
+        Run shadowed = run("trace", "scenes/showcase.json", "--pixel", "1050", "600");
+        assertEquals(0, shadowed.status(), shadowed.err());
+        assertTrue(shadowed.out().contains("hit \"floor\""), shadowed.out());
+        assertTrue(shadowed.out().contains("BLOCKED by \"blue ball\""), shadowed.out());
+        assertTrue(shadowed.out().contains("colour L ="), shadowed.out());
+        Run lit = run("trace", "scenes/showcase.json", "--pixel", "330", "420");
+        assertEquals(0, lit.status(), lit.err());
+        assertTrue(lit.out().contains("hit \"gold ball\""), lit.out());
+        assertFalse(lit.out().contains("BLOCKED"), lit.out());
+        assertTrue(lit.out().contains("specular ks*I*max(0, n.h)^p"), lit.out());
+    }
 }

@@ -76,7 +76,14 @@ public final class Release {
             }
             byte[] bytes = Files.readAllBytes(root.resolve(rel));
             if (rel.matches("assignments/[^/]+/assignment\\.json")) {
-                bytes = withoutHiddenTests(rel, bytes);
+                String folder = rel.substring(0, rel.lastIndexOf('/'));
+                double casePoints = 0;
+                for (Assignment a : assignments.all()) {
+                    if (a.folder().toString().replace('\\', '/').equals(folder)) {
+                        casePoints = Assignments.casePoints(root, a);
+                    }
+                }
+                bytes = withoutHiddenTests(rel, bytes, casePoints);
             } else if (rel.endsWith(".java")) {
                 String text = new String(bytes, StandardCharsets.UTF_8);
                 if (SolutionRegions.hasRegions(text) || assignments.ownerOf(rel).isPresent()) {
@@ -137,8 +144,12 @@ public final class Release {
         return SolutionRegions.toStudent(rel, text, Set.of());
     }
 
-    /** An assignment.json without its tests.hidden list, written in one fixed layout. */
-    static byte[] withoutHiddenTests(String rel, byte[] bytes) throws IOException {
+    /**
+     * An assignment.json without what the grader keeps private, written in one fixed layout: the
+     * tests.hidden list goes, and the data-driven cases go with their points counted as hidden
+     * points (the case files are grader data and are not shipped).
+     */
+    static byte[] withoutHiddenTests(String rel, byte[] bytes, double casePoints) throws IOException {
         ObjectMapper json = new ObjectMapper();
         JsonNode node = json.readTree(bytes);
         if (!(node instanceof ObjectNode obj)) {
@@ -146,7 +157,15 @@ public final class Release {
         }
         if (obj.get("tests") instanceof ObjectNode tests) {
             tests.remove("hidden");
+            if (casePoints > 0) {
+                double hidden = tests.path("hiddenPoints").asDouble(0) + casePoints;
+                if (hidden != Math.rint(hidden)) {
+                    throw new IOException(rel + ": the cases' points must add up to whole points, got " + casePoints);
+                }
+                tests.put("hiddenPoints", (long) hidden);
+            }
         }
+        obj.remove("cases");
         DefaultPrettyPrinter pretty = new DefaultPrettyPrinter()
                 .withSeparators(Separators.createDefaultInstance()
                         .withObjectFieldValueSpacing(Separators.Spacing.AFTER))

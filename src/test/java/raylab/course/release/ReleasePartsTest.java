@@ -91,14 +91,25 @@ class ReleasePartsTest {
     void assignmentLosesItsHiddenTestsAndNothingElse() throws IOException {
         oneMilestone();
         byte[] in = Files.readAllBytes(dir.resolve("assignments/01-sphere/assignment.json"));
-        byte[] out = Release.withoutHiddenTests("a.json", in);
+        byte[] out = Release.withoutHiddenTests("a.json", in, 0);
         String text = new String(out, StandardCharsets.UTF_8);
         assertFalse(text.contains("hidden\""), text);
         assertFalse(text.contains("grader/"), text);
         assertTrue(text.contains("\"hiddenPoints\": 1"), text);
         assertTrue(text.contains("\"visible\": [\n      \"src/test/java/ATest.java\"\n    ]"), text);
         assertTrue(text.endsWith("}\n"), text);
-        assertEquals(text, new String(Release.withoutHiddenTests("a.json", out), StandardCharsets.UTF_8),
+        assertEquals(text, new String(Release.withoutHiddenTests("a.json", out, 0), StandardCharsets.UTF_8),
                 "rewriting the result again changes nothing");
+    }
+
+    @Test
+    void dataCasesStayWithTheGraderAndTheirPointsCountAsHidden() throws IOException {
+        String in = "{\"id\": \"sphere\", \"points\": 10, \"tests\": {\"tag\": \"sphere\", \"visible\": [],"
+                + " \"hidden\": [\"grader/x.java\"], \"visiblePoints\": 5, \"hiddenPoints\": 3},"
+                + " \"cases\": [\"cases/basic.json\"]}";
+        String text = new String(Release.withoutHiddenTests("a.json", in.getBytes(StandardCharsets.UTF_8), 2),
+                StandardCharsets.UTF_8);
+        assertFalse(text.contains("cases"), text);
+        assertTrue(text.contains("\"hiddenPoints\": 5"), "3 hidden points + 2 case points: " + text);
     }
 }

@@ -2,7 +2,6 @@ package raylab.grade;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertTrue;
-import static org.junit.jupiter.api.Assumptions.assumeTrue;
 
 import java.io.ByteArrayOutputStream;
 import java.io.InputStream;
@@ -28,9 +27,9 @@ import raylab.course.SolutionRegions;
 /**
  * The Gradescope bundle, unzipped into a directory laid out like Gradescope's (source,
  * submission, results under one root), grades a sample submission offline with run_autograder.
- * Needs the shaded jar (./mvnw -DskipTests package); skipped without it.
+ * Runs after `package` (an integration test of `./mvnw verify`): it bundles target/raylab.jar.
  */
-class BundleTest {
+class BundleIT {
     @TempDir
     Path dir;
 
@@ -38,7 +37,7 @@ class BundleTest {
     void unzippedBundleGradesASubmissionOffline() throws Exception {
         Path root = Path.of(System.getProperty("raylab.grade.root", ".")).toAbsolutePath().normalize();
         Path jar = Path.of("target/raylab.jar").toAbsolutePath();
-        assumeTrue(Files.isRegularFile(jar), "needs target/raylab.jar (./mvnw -DskipTests package)");
+        assertTrue(Files.isRegularFile(jar), "needs target/raylab.jar: run with ./mvnw verify, which packages it first");
         // Like /autograder on Gradescope: traversable by the unprivileged user (JUnit makes it 700).
         Files.setPosixFilePermissions(dir, java.nio.file.attribute.PosixFilePermissions.fromString("rwxr-xr-x"));
         Path zip = dir.resolve("autograder.zip");
