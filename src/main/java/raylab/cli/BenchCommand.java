@@ -25,8 +25,8 @@ import raylab.scene.SceneLoader;
  * reports the median wall time and rays per second, stamped with machine, JVM and date.
  */
 @Command(name = "bench", mixinStandardHelpOptions = true,
-        description = {"Measure render time: warm-up runs, then timed runs; prints a Markdown table",
-            "of median wall time (min-max) and rays per second, with machine, JVM and date."})
+        description = {"Measure render time and rays per second.",
+            "Warm-up runs, then timed runs; prints a Markdown table of median wall time (min-max) and rays per second, with machine, JVM and date."})
 public final class BenchCommand implements Callable<Integer> {
     @Spec
     CommandSpec spec;

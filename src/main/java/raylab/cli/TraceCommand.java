@@ -30,8 +30,8 @@ import raylab.scene.SceneLoader;
 
 /** {@code raylab trace SCENE.json --pixel X Y}: the ray tree of one pixel, step by step. */
 @Command(name = "trace", mixinStandardHelpOptions = true,
-        description = {"Print the ray tree of one pixel: the eye ray, its hit, each light's shadow ray",
-            "and shading terms, and the final colour. Pixel (0, 0) is the top-left corner."})
+        description = {"Print the ray tree of one pixel, step by step.",
+            "The eye ray, its hit, each light's shadow ray and shading terms, and the final colour. Pixel (0, 0) is the top-left corner."})
 public final class TraceCommand implements Callable<Integer> {
     @Spec
     CommandSpec spec;

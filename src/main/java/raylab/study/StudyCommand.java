@@ -20,8 +20,8 @@ import raylab.cli.UserError;
  * DIR/report.md with PNG plots, stamped with machine, JVM and date. Instructor only.
  */
 @Command(name = "study", mixinStandardHelpOptions = true,
-        description = {"Measure what accuracy costs in time: sampling, sphere and triangle methods,",
-            "shadow-ray offsets, BVH against a linear group, box slabs. Writes DIR/report.md and",
+        description = {"Measure what accuracy costs in time (instructors).",
+            "Sampling, sphere and triangle methods, shadow-ray offsets, BVH against a linear group, box slabs. Writes DIR/report.md and",
             "PNG plots, conclusions first, stamped with machine, JVM and date."})
 public final class StudyCommand implements Callable<Integer> {
     @Spec
