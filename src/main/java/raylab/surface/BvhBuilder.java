@@ -16,12 +16,14 @@ import java.util.Arrays;
 final class BvhBuilder {
     static final int BINS = 12;
     static final int MAX_LEAF = 4;
+    /** Ints per node of the depth-first output: six float bounds, then two ints. */
+    static final int STRIDE = 8;
 
     private final double[] box; // primitive i: minX, minY, minZ, maxX, maxY, maxZ at 6 i
     private final double[] cen; // centroid of primitive i at 3 i
     private final int[] order;
     private final int[] scratch;
-    private int[] nodes = new int[BvhNodes.STRIDE * 64];
+    private int[] nodes = new int[STRIDE * 64];
     private int count;
     private int depth;
     // Reused per node: bin counts and boxes.
@@ -52,7 +54,7 @@ final class BvhBuilder {
         if (n > 0) {
             b.build(0, n, 1);
         }
-        return new BvhNodes(Arrays.copyOf(b.nodes, BvhNodes.STRIDE * b.count), b.count, b.depth, b.order);
+        return new BvhNodes(Arrays.copyOf(b.nodes, STRIDE * b.count), b.count, b.depth, b.order);
     }
 
     private int build(int lo, int hi, int level) {
@@ -150,8 +152,8 @@ final class BvhBuilder {
         System.arraycopy(scratch, 0, order, mid, r);
         build(lo, mid, level + 1);
         int rightChild = build(mid, hi, level + 1);
-        nodes[BvhNodes.STRIDE * node + 6] = rightChild;
-        nodes[BvhNodes.STRIDE * node + 7] = -(axis + 1);
+        nodes[STRIDE * node + 6] = rightChild;
+        nodes[STRIDE * node + 7] = -(axis + 1);
         return node;
     }
 
@@ -190,19 +192,19 @@ final class BvhBuilder {
     }
 
     private int newNode() {
-        if (BvhNodes.STRIDE * (count + 1) > nodes.length) {
+        if (STRIDE * (count + 1) > nodes.length) {
             nodes = Arrays.copyOf(nodes, nodes.length * 2);
         }
         return count++;
     }
 
     private void makeLeaf(int node, int lo, int n) {
-        nodes[BvhNodes.STRIDE * node + 6] = lo;
-        nodes[BvhNodes.STRIDE * node + 7] = n;
+        nodes[STRIDE * node + 6] = lo;
+        nodes[STRIDE * node + 7] = n;
     }
 
     private void setBox(int node, double x0, double y0, double z0, double x1, double y1, double z1) {
-        int k = BvhNodes.STRIDE * node;
+        int k = STRIDE * node;
         nodes[k] = Float.floatToRawIntBits(down(x0));
         nodes[k + 1] = Float.floatToRawIntBits(down(y0));
         nodes[k + 2] = Float.floatToRawIntBits(down(z0));

@@ -199,49 +199,76 @@ public final class Mesh extends Surface {
         final double pkx = kx == 0 ? px : kx == 1 ? py : pz;
         final double pky = ky == 0 ? px : ky == 1 ? py : pz;
         final double pkz = kz == 0 ? px : kz == 1 ? py : pz;
-        final int[] nodes = tree.nodes;
+        final int[] inner = tree.inner;
+        final int[] leaf = tree.leaf;
         final double[] tri = this.tri;
-        final int[] stack = packedStack(tree.depth);
         double best = rec.t;
+        double t1 = tMax < best ? tMax : best; // the far end of the search: min(tMax, closest hit)
+        if (BvhNodes.entry(tree.rootBox, 0, px, py, pz, ix, iy, iz, nx, ny, nz, tMin, t1)
+                == Double.POSITIVE_INFINITY) {
+            return false;
+        }
+        BvhNodes.Frames frames = BvhNodes.frames();
+        // The packed traversal calls nothing that traces, so it may use its frame without taking it.
+        BvhNodes.ensure(frames, frames.top + tree.depth + 1);
+        final int[] refs = frames.refs;
+        final double[] entries = frames.entry;
+        final int base = frames.top;
+        int top = base;
+        int ref = tree.rootRef;
         int bestSlot = -1;
-        long tests = 0;
-        int top = 0;
-        int node = 0;
+        int tests = 0;
         traversal:
         while (true) {
-            int k = BvhNodes.STRIDE * node;
-            if (BvhNodes.hits(nodes, k, px, py, pz, ix, iy, iz, nx, ny, nz, tMin, Math.min(tMax, best))) {
-                int tag = nodes[k + 7];
-                if (tag > 0) {
-                    int end = nodes[k + 6] + tag;
-                    for (int s = nodes[k + 6]; s < end; s++) {
-                        tests++;
-                        double t = hitT(tri, 9 * s, kx, ky, kz, sx, sy, sz, pkx, pky, pkz);
-                        // NaN (no hit) fails both comparisons.
-                        if (t >= tMin && t <= tMax && t < best) {
-                            best = t;
-                            bestSlot = s;
-                            if (anyHit) {
-                                break traversal;
-                            }
+            if (ref < 0) {
+                int l = 2 * ~ref;
+                int end = leaf[l] + leaf[l + 1];
+                for (int s = leaf[l]; s < end; s++) {
+                    tests++;
+                    double t = hitT(tri, 9 * s, kx, ky, kz, sx, sy, sz, pkx, pky, pkz);
+                    // NaN (no hit) fails every comparison.
+                    if (t >= tMin && t <= tMax && t < best) {
+                        best = t;
+                        t1 = t;
+                        bestSlot = s;
+                        if (anyHit) {
+                            break traversal;
                         }
                     }
-                } else {
-                    int axis = -tag - 1;
-                    if ((axis == 0 ? nx : axis == 1 ? ny : nz) != 0) {
-                        stack[top++] = node + 1;
-                        node = nodes[k + 6];
-                    } else {
-                        stack[top++] = nodes[k + 6];
-                        node = node + 1;
+                }
+            } else {
+                int k = BvhNodes.INNER * ref;
+                double tl = BvhNodes.entry(inner, k, px, py, pz, ix, iy, iz, nx, ny, nz, tMin, t1);
+                double tr = BvhNodes.entry(inner, k + 6, px, py, pz, ix, iy, iz, nx, ny, nz, tMin, t1);
+                int axis = inner[k + 14];
+                boolean rightFirst = (axis == 0 ? nx : axis == 1 ? ny : nz) != 0;
+                int near = inner[k + (rightFirst ? 13 : 12)];
+                int far = inner[k + (rightFirst ? 12 : 13)];
+                double tNear = rightFirst ? tr : tl;
+                double tFar = rightFirst ? tl : tr;
+                if (tNear != Double.POSITIVE_INFINITY) {
+                    if (tFar != Double.POSITIVE_INFINITY) {
+                        refs[top] = far;
+                        entries[top++] = tFar;
                     }
+                    ref = near;
+                    continue;
+                }
+                if (tFar != Double.POSITIVE_INFINITY) {
+                    ref = far;
                     continue;
                 }
             }
-            if (top == 0) {
-                break;
+            while (true) {
+                if (top == base) {
+                    break traversal;
+                }
+                top--;
+                if (entries[top] <= t1) {
+                    ref = refs[top];
+                    break;
+                }
             }
-            node = stack[--top];
         }
         rec.tests += tests;
         if (bestSlot < 0) {
@@ -249,18 +276,6 @@ public final class Mesh extends Surface {
         }
         record(rec, best, bestSlot, kx, ky, kz, sx, sy, sz, pkx, pky, pkz);
         return true;
-    }
-
-    /** Per-thread stack of the packed traversal, which never calls out (so is never re-entered). */
-    private static final ThreadLocal<int[]> STACK = ThreadLocal.withInitial(() -> new int[64]);
-
-    private static int[] packedStack(int depth) {
-        int[] s = STACK.get();
-        if (s.length < depth + 1) {
-            s = new int[depth + 1];
-            STACK.set(s);
-        }
-        return s;
     }
 
     private static int largestAxis(double dx, double dy, double dz) {
@@ -289,6 +304,10 @@ public final class Mesh extends Surface {
         double cy = tri[o + 6 + ky] - pky + sy * cz;
         double e0 = differenceOfProducts(bx, cy, by, cx);
         double e1 = differenceOfProducts(cx, ay, cy, ax);
+        // Two edge functions of opposite signs already decide the miss; the third is not needed.
+        if (e0 < 0 && e1 > 0 || e0 > 0 && e1 < 0) {
+            return Double.NaN;
+        }
         double e2 = differenceOfProducts(ax, by, ay, bx);
         if ((e0 < 0 || e1 < 0 || e2 < 0) && (e0 > 0 || e1 > 0 || e2 > 0)) {
             return Double.NaN;
@@ -360,9 +379,14 @@ public final class Mesh extends Surface {
         return tree.count;
     }
 
+    /** Depth of the mesh's tree (1 for a single leaf). */
+    public int depth() {
+        return tree.depth;
+    }
+
     /** Bytes held by the packed triangles and the tree (not counting Triangle objects). */
     public long packedBytes() {
-        return 8L * tri.length + 4L * tree.nodes.length + 4L * tree.order.length;
+        return 8L * tri.length + 4L * tree.inner.length + 4L * tree.leaf.length + 4L * tree.order.length;
     }
 
     /** The triangles, in file order (made on first request when the mesh was built from arrays). */
