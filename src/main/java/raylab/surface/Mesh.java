@@ -274,6 +274,16 @@ public final class Mesh extends Surface {
         if (bestSlot < 0) {
             return false;
         }
+        if (anyHit) {
+            // A shadow ray needs only to know the blocker: no point or normal, nothing allocated.
+            rec.t = best;
+            rec.point = null;
+            rec.normal = null;
+            rec.surface = this;
+            rec.material = material;
+            rec.primitive = tree.order[bestSlot];
+            return true;
+        }
         record(rec, best, bestSlot, kx, ky, kz, sx, sy, sz, pkx, pky, pkz);
         return true;
     }
