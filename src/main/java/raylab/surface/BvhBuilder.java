@@ -1,6 +1,9 @@
 package raylab.surface;
 
 import java.util.Arrays;
+import java.util.concurrent.ForkJoinPool;
+import java.util.concurrent.ForkJoinTask;
+import java.util.concurrent.RecursiveAction;
 
 /**
  * Builds a {@link BvhNodes} tree over primitives given only as boxes in a flat array: top-down,
@@ -12,12 +15,18 @@ import java.util.Arrays;
  * constant number of times, so the build is O(n log n) for a balanced split sequence. The result
  * depends only on the boxes (no threads, no hashing), so the same scene always gives the same
  * tree; it is the same tree the former object-based {@code Bvh} built.
+ *
+ * <p>Large inputs ({@link #PARALLEL_MIN} primitives and more) build the two subtrees of every node
+ * above that size in parallel, each into its own node array, and then append them in depth-first
+ * order: the result is identical to the sequential build, node for node.
  */
 final class BvhBuilder {
     static final int BINS = 12;
     static final int MAX_LEAF = 4;
     /** Ints per node of the depth-first output: six float bounds, then two ints. */
     static final int STRIDE = 8;
+    /** Subtrees of at least this many primitives are built in parallel. */
+    static final int PARALLEL_MIN = 1 << 15;
 
     private final double[] box; // primitive i: minX, minY, minZ, maxX, maxY, maxZ at 6 i
     private final double[] cen; // centroid of primitive i at 3 i
@@ -32,32 +41,69 @@ final class BvhBuilder {
     private final double[] left = new double[6];
     private final double[] right = new double[6];
 
-    private BvhBuilder(double[] box, int n) {
+    private BvhBuilder(double[] box, double[] cen, int[] order, int[] scratch) {
         this.box = box;
-        this.cen = new double[3 * n];
+        this.cen = cen;
+        this.order = order;
+        this.scratch = scratch;
+    }
+
+    /** The tree over {@code n} primitives whose boxes are {@code box[6 i .. 6 i + 6)}. */
+    static BvhNodes build(double[] box, int n) {
+        return build(box, n, Runtime.getRuntime().availableProcessors());
+    }
+
+    /** As {@link #build(double[], int)}, with at most {@code threads} threads. */
+    static BvhNodes build(double[] box, int n, int threads) {
+        double[] cen = new double[3 * n];
         for (int i = 0; i < n; i++) {
             for (int k = 0; k < 3; k++) {
                 // As BoundingBox.centroid(): (min + max)·0.5.
                 cen[3 * i + k] = (box[6 * i + k] + box[6 * i + 3 + k]) * 0.5;
             }
         }
-        this.order = new int[n];
+        int[] order = new int[n];
         for (int i = 0; i < n; i++) {
             order[i] = i;
         }
-        this.scratch = new int[n];
-    }
-
-    /** The tree over {@code n} primitives whose boxes are {@code box[6 i .. 6 i + 6)}. */
-    static BvhNodes build(double[] box, int n) {
-        BvhBuilder b = new BvhBuilder(box, n);
-        if (n > 0) {
-            b.build(0, n, 1);
+        BvhBuilder b = new BvhBuilder(box, cen, order, new int[n]);
+        if (n >= 2 * PARALLEL_MIN && threads > 1) {
+            ForkJoinPool pool = new ForkJoinPool(threads);
+            try {
+                pool.invoke(new Task(b, 0, n, 1, true));
+            } finally {
+                pool.shutdown();
+            }
+        } else if (n > 0) {
+            b.build(0, n, 1, false);
         }
-        return new BvhNodes(Arrays.copyOf(b.nodes, STRIDE * b.count), b.count, b.depth, b.order);
+        return new BvhNodes(Arrays.copyOf(b.nodes, STRIDE * b.count), b.count, b.depth, order);
     }
 
-    private int build(int lo, int hi, int level) {
+    /** Builds one subtree into its builder. */
+    private static final class Task extends RecursiveAction {
+        private static final long serialVersionUID = 1L;
+        private final transient BvhBuilder b;
+        private final int lo;
+        private final int hi;
+        private final int level;
+        private final boolean parallel;
+
+        Task(BvhBuilder b, int lo, int hi, int level, boolean parallel) {
+            this.b = b;
+            this.lo = lo;
+            this.hi = hi;
+            this.level = level;
+            this.parallel = parallel;
+        }
+
+        @Override
+        protected void compute() {
+            b.build(lo, hi, level, parallel);
+        }
+    }
+
+    private int build(int lo, int hi, int level, boolean parallel) {
         int node = newNode();
         depth = Math.max(depth, level);
         double nx0 = Double.POSITIVE_INFINITY, ny0 = nx0, nz0 = nx0;
@@ -67,19 +113,29 @@ final class BvhBuilder {
         for (int i = lo; i < hi; i++) {
             int p = order[i];
             int b = 6 * p;
-            nx0 = Math.min(nx0, box[b]);
-            ny0 = Math.min(ny0, box[b + 1]);
-            nz0 = Math.min(nz0, box[b + 2]);
-            nx1 = Math.max(nx1, box[b + 3]);
-            ny1 = Math.max(ny1, box[b + 4]);
-            nz1 = Math.max(nz1, box[b + 5]);
+            // Plain comparisons: no NaN here, and the sign of a zero bound changes no decision.
+            double v = box[b];
+            nx0 = v < nx0 ? v : nx0;
+            v = box[b + 1];
+            ny0 = v < ny0 ? v : ny0;
+            v = box[b + 2];
+            nz0 = v < nz0 ? v : nz0;
+            v = box[b + 3];
+            nx1 = v > nx1 ? v : nx1;
+            v = box[b + 4];
+            ny1 = v > ny1 ? v : ny1;
+            v = box[b + 5];
+            nz1 = v > nz1 ? v : nz1;
             int c = 3 * p;
-            cx0 = Math.min(cx0, cen[c]);
-            cy0 = Math.min(cy0, cen[c + 1]);
-            cz0 = Math.min(cz0, cen[c + 2]);
-            cx1 = Math.max(cx1, cen[c]);
-            cy1 = Math.max(cy1, cen[c + 1]);
-            cz1 = Math.max(cz1, cen[c + 2]);
+            v = cen[c];
+            cx0 = v < cx0 ? v : cx0;
+            cx1 = v > cx1 ? v : cx1;
+            v = cen[c + 1];
+            cy0 = v < cy0 ? v : cy0;
+            cy1 = v > cy1 ? v : cy1;
+            v = cen[c + 2];
+            cz0 = v < cz0 ? v : cz0;
+            cz1 = v > cz1 ? v : cz1;
         }
         setBox(node, nx0, ny0, nz0, nx1, ny1, nz1);
         int n = hi - lo;
@@ -146,15 +202,42 @@ final class BvhBuilder {
             if (binOf(cen[3 * p + axis], cmin, cext) < bestSplit) {
                 order[mid++] = p;
             } else {
-                scratch[r++] = p;
+                scratch[lo + r++] = p;
             }
         }
-        System.arraycopy(scratch, 0, order, mid, r);
-        build(lo, mid, level + 1);
-        int rightChild = build(mid, hi, level + 1);
+        System.arraycopy(scratch, lo, order, mid, r);
+        int rightChild;
+        if (parallel && n >= PARALLEL_MIN) {
+            // Disjoint ranges of order and scratch; separate node arrays, appended in order.
+            BvhBuilder left = new BvhBuilder(box, cen, order, scratch);
+            BvhBuilder right = new BvhBuilder(box, cen, order, scratch);
+            ForkJoinTask.invokeAll(new Task(left, lo, mid, level + 1, true), new Task(right, mid, hi, level + 1, true));
+            append(left);
+            rightChild = count;
+            append(right);
+        } else {
+            build(lo, mid, level + 1, parallel);
+            rightChild = build(mid, hi, level + 1, parallel);
+        }
         nodes[STRIDE * node + 6] = rightChild;
         nodes[STRIDE * node + 7] = -(axis + 1);
         return node;
+    }
+
+    /** Appends a subtree built by another builder, shifting its node references. */
+    private void append(BvhBuilder sub) {
+        int base = count;
+        while (STRIDE * (count + sub.count) > nodes.length) {
+            nodes = Arrays.copyOf(nodes, nodes.length * 2);
+        }
+        System.arraycopy(sub.nodes, 0, nodes, STRIDE * base, STRIDE * sub.count);
+        for (int i = base; i < base + sub.count; i++) {
+            if (nodes[STRIDE * i + 7] <= 0) {
+                nodes[STRIDE * i + 6] += base;
+            }
+        }
+        count += sub.count;
+        depth = Math.max(depth, sub.depth);
     }
 
     static int binOf(double c, double cmin, double cext) {
@@ -172,12 +255,16 @@ final class BvhBuilder {
     }
 
     private static void unionInto(double[] to, int k, double[] from, int j) {
-        to[k] = Math.min(to[k], from[j]);
-        to[k + 1] = Math.min(to[k + 1], from[j + 1]);
-        to[k + 2] = Math.min(to[k + 2], from[j + 2]);
-        to[k + 3] = Math.max(to[k + 3], from[j + 3]);
-        to[k + 4] = Math.max(to[k + 4], from[j + 4]);
-        to[k + 5] = Math.max(to[k + 5], from[j + 5]);
+        for (int i = 0; i < 3; i++) {
+            double lo = from[j + i];
+            double hi = from[j + 3 + i];
+            if (lo < to[k + i]) {
+                to[k + i] = lo;
+            }
+            if (hi > to[k + 3 + i]) {
+                to[k + 3 + i] = hi;
+            }
+        }
     }
 
     /** As BoundingBox.halfArea(): 0 for an empty box, else xy + yz + zx of the extent. */

@@ -10,8 +10,8 @@ import raylab.ray.Ray;
  *
  * <p>Inner node i occupies {@link #INNER} ints of {@link #inner} from {@code INNER·i}: the boxes of
  * its two children as six floats each (min x, y, z, max x, y, z, stored as their bits and rounded
- * outward, so a box still holds everything), then the two children's references and the split
- * axis. A reference r ≥ 0 is inner node r; r &lt; 0 is leaf ~r, whose first primitive slot and
+ * outward, so a box still holds everything), then the left child's reference and
+ * {@code (right reference << 2) | split axis}. A reference r ≥ 0 is inner node r; r &lt; 0 is leaf ~r, whose first primitive slot and
  * count are {@code leaf[2·~r]} and {@code leaf[2·~r + 1]}. Testing both children's boxes at the
  * parent means a missed child is never fetched nor pushed.
  *
@@ -22,8 +22,8 @@ import raylab.ray.Ray;
  * frame per nested tree), so tracing a ray allocates nothing.
  */
 final class BvhNodes {
-    /** Ints per inner node: two boxes of six floats, two references, the axis, padding. */
-    static final int INNER = 16;
+    /** Ints per inner node: two boxes of six floats, the left reference, the right one with the axis. */
+    static final int INNER = 14;
     /** Relative widening of a box's exit distance, so that rounding cannot cull a hit (pbrt). */
     static final double ROUND_UP = 1 + 2 * raylab.math.Numerics.gamma(3);
 
@@ -86,8 +86,7 @@ final class BvhNodes {
                 System.arraycopy(dfs, BvhBuilder.STRIDE * left, inner, o, 6);
                 System.arraycopy(dfs, BvhBuilder.STRIDE * right, inner, o + 6, 6);
                 inner[o + 12] = ref[left];
-                inner[o + 13] = ref[right];
-                inner[o + 14] = -dfs[k + 7] - 1;
+                inner[o + 13] = ref[right] << 2 | (-dfs[k + 7] - 1);
             }
         }
         rootRef = count == 0 ? 0 : ref[0];
@@ -186,10 +185,11 @@ final class BvhNodes {
                 double t1 = Math.min(tMax, rec.t);
                 double tl = entry(inner, k, px, py, pz, ix, iy, iz, nx, ny, nz, tMin, t1);
                 double tr = entry(inner, k + 6, px, py, pz, ix, iy, iz, nx, ny, nz, tMin, t1);
-                int axis = inner[k + 14];
+                int packed = inner[k + 13];
+                int axis = packed & 3;
                 boolean rightFirst = (axis == 0 ? nx : axis == 1 ? ny : nz) != 0;
-                int near = inner[k + (rightFirst ? 13 : 12)];
-                int far = inner[k + (rightFirst ? 12 : 13)];
+                int near = rightFirst ? packed >> 2 : inner[k + 12];
+                int far = rightFirst ? inner[k + 12] : packed >> 2;
                 double tNear = rightFirst ? tr : tl;
                 double tFar = rightFirst ? tl : tr;
                 if (tNear != Double.POSITIVE_INFINITY) {

@@ -240,10 +240,11 @@ public final class Mesh extends Surface {
                 int k = BvhNodes.INNER * ref;
                 double tl = BvhNodes.entry(inner, k, px, py, pz, ix, iy, iz, nx, ny, nz, tMin, t1);
                 double tr = BvhNodes.entry(inner, k + 6, px, py, pz, ix, iy, iz, nx, ny, nz, tMin, t1);
-                int axis = inner[k + 14];
+                int packed = inner[k + 13];
+                int axis = packed & 3;
                 boolean rightFirst = (axis == 0 ? nx : axis == 1 ? ny : nz) != 0;
-                int near = inner[k + (rightFirst ? 13 : 12)];
-                int far = inner[k + (rightFirst ? 12 : 13)];
+                int near = rightFirst ? packed >> 2 : inner[k + 12];
+                int far = rightFirst ? inner[k + 12] : packed >> 2;
                 double tNear = rightFirst ? tr : tl;
                 double tFar = rightFirst ? tl : tr;
                 if (tNear != Double.POSITIVE_INFINITY) {
