@@ -13,12 +13,15 @@ import picocli.CommandLine.Parameters;
 import picocli.CommandLine.Spec;
 import picocli.CommandLine.Model.CommandSpec;
 import raylab.bench.MachineInfo;
+import raylab.bench.MeshBench;
 import raylab.render.RenderPlan;
 import raylab.render.RenderStats;
 import raylab.render.Renderer;
 import raylab.render.Mode;
+import raylab.scene.ObjLoader;
 import raylab.scene.Scene;
 import raylab.scene.SceneLoader;
+import raylab.surface.Mesh;
 
 /**
  * {@code raylab bench SCENE.json...}: renders each scene several times after warm-up runs and
@@ -26,13 +29,22 @@ import raylab.scene.SceneLoader;
  */
 @Command(name = "bench", mixinStandardHelpOptions = true,
         description = {"Measure render time and rays per second.",
-            "Warm-up runs, then timed runs; prints a Markdown table of median wall time (min-max) and rays per second, with machine, JVM and date."})
+            "Warm-up runs, then timed runs; prints a Markdown table of median wall time (min-max) and rays per second, with machine, JVM and date.",
+            "With --obj MESH.obj: the Embree harness's rays on one mesh (primary, then primary + shadow), as one JSON line."})
 public final class BenchCommand implements Callable<Integer> {
     @Spec
     CommandSpec spec;
 
-    @Parameters(paramLabel = "SCENE.json", arity = "1..*", description = "Scenes to render.")
-    List<Path> scenes;
+    @Parameters(paramLabel = "SCENE.json", arity = "0..*", description = "Scenes to render.")
+    List<Path> scenes = new ArrayList<>();
+
+    @Option(names = "--obj", paramLabel = "MESH.obj",
+            description = {"Instead of scenes: trace the rays of the shared Embree harness (../shared/bench/embree) on this mesh,",
+                "primary rays only, then primary plus one shadow ray per hit; prints Mrays/s (best and median of --runs)."})
+    Path obj;
+
+    @Option(names = "--size", paramLabel = "WxH", description = "Image size for --obj (default: ${DEFAULT-VALUE}).")
+    String size = "1024x768";
 
     @Option(names = "--runs", description = "Timed runs per scene (default: ${DEFAULT-VALUE}).")
     int runs = 5;
@@ -49,6 +61,12 @@ public final class BenchCommand implements Callable<Integer> {
             throw UserError.badInput("--runs and --threads must be at least 1, --warmup at least 0");
         }
         PrintWriter out = spec.commandLine().getOut();
+        if (obj != null) {
+            return meshBench(out);
+        }
+        if (scenes.isEmpty()) {
+            throw UserError.badInput("give SCENE.json files to render, or --obj MESH.obj");
+        }
         List<Scene> loaded = new ArrayList<>();
         List<Long> loadNanos = new ArrayList<>();
         for (Path p : scenes) {
@@ -84,5 +102,67 @@ public final class BenchCommand implements Callable<Integer> {
             out.flush();
         }
         return Main.OK;
+    }
+
+    private Integer meshBench(PrintWriter out) throws Exception {
+        String[] wh = size.split("x", -1);
+        int w;
+        int h;
+        try {
+            w = Integer.parseInt(wh[0]);
+            h = wh.length == 2 ? Integer.parseInt(wh[1]) : -1;
+        } catch (NumberFormatException e) {
+            w = -1;
+            h = -1;
+        }
+        if (wh.length != 2 || w < 1 || h < 1 || (long) w * h > 100_000_000L) {
+            throw UserError.badInput("--size must be WIDTHxHEIGHT, such as 1024x768, got '" + size + "'");
+        }
+        long t0 = System.nanoTime();
+        ObjLoader.Indexed read;
+        try {
+            read = ObjLoader.read(obj, obj.toString());
+        } catch (ObjLoader.ObjException e) {
+            throw UserError.badInput(e.getMessage());
+        }
+        long t1 = System.nanoTime();
+        Mesh mesh = new Mesh(read.triangleVertices(), MeshBench.GREY, obj.getFileName().toString());
+        long t2 = System.nanoTime();
+        read = null;
+        MeshBench bench = new MeshBench(mesh, w, h);
+        out.println("machine: " + MachineInfo.current().oneLine());
+        out.printf("mesh: %s, %,d triangles, %,d BVH nodes, %s kernel; parse %.0f ms, build %.0f ms%n", obj,
+                mesh.primitiveCount(), mesh.nodeCount(), mesh.usesPackedKernel() ? "packed" : "Triangle.intersect",
+                (t1 - t0) / 1e6, (t2 - t1) / 1e6);
+        out.printf("rays: %dx%d pixel centres (harness camera), %d thread%s, %d warm-up + %d timed passes each%n", w, h,
+                threads, threads == 1 ? "" : "s", warmup, runs);
+        out.flush();
+        for (int r = 0; r < warmup; r++) {
+            bench.run(threads, true);
+        }
+        double[] primary = new double[runs];
+        double[] withShadows = new double[runs];
+        MeshBench.Pass p = null;
+        MeshBench.Pass ps = null;
+        for (int r = 0; r < runs; r++) {
+            p = bench.run(threads, false);
+            ps = bench.run(threads, true);
+            primary[r] = p.mraysPerSecond();
+            withShadows[r] = ps.mraysPerSecond();
+        }
+        Arrays.sort(primary);
+        Arrays.sort(withShadows);
+        out.printf("{\"triangles\":%d,\"threads\":%d,\"build_ms\":%.1f,\"primary_mrays_s\":%.2f,"
+                + "\"primary_plus_shadow_mrays_s\":%.2f,\"primary_median\":%.2f,\"primary_min\":%.2f,"
+                + "\"shadow_median\":%.2f,\"hits\":%d,\"occluded\":%d}%n",
+                mesh.primitiveCount(), threads, (t2 - t1) / 1e6, primary[runs - 1], withShadows[runs - 1],
+                median(primary), primary[0], median(withShadows), p.hits(), ps.occluded());
+        out.flush();
+        return Main.OK;
+    }
+
+    private static double median(double[] sorted) {
+        int n = sorted.length;
+        return n % 2 == 1 ? sorted[n / 2] : (sorted[n / 2 - 1] + sorted[n / 2]) / 2;
     }
 }

@@ -23,6 +23,11 @@ public final class IntersectionRecord {
     public Surface surface;
     /** That surface's material. */
     public Material material;
+    /**
+     * Which triangle of a packed mesh was hit (its index in the mesh's file order) when
+     * {@link #surface} is a {@link raylab.surface.Mesh}; −1 otherwise.
+     */
+    public int primitive = -1;
     /** Ray–primitive intersection tests counted by groups and hierarchies, for statistics. */
     public long tests;
 
@@ -33,6 +38,7 @@ public final class IntersectionRecord {
         normal = null;
         surface = null;
         material = null;
+        primitive = -1;
     }
 
     /** Whether a hit has been recorded since the last reset. */
@@ -47,6 +53,7 @@ public final class IntersectionRecord {
         this.normal = normal;
         this.surface = s;
         this.material = s.material();
+        this.primitive = -1;
     }
 
     /** Copies another record's hit (not its test count). */
@@ -56,6 +63,7 @@ public final class IntersectionRecord {
         normal = o.normal;
         surface = o.surface;
         material = o.material;
+        primitive = o.primitive;
     }
 
     @Override

@@ -7,7 +7,7 @@ import java.util.concurrent.ExecutionException;
 import java.util.concurrent.ExecutorService;
 import java.util.concurrent.Executors;
 import java.util.concurrent.Future;
-import java.util.concurrent.atomic.AtomicInteger;
+import java.util.concurrent.atomic.AtomicIntegerArray;
 import java.util.function.IntConsumer;
 
 import raylab.math.Color;
@@ -23,6 +23,11 @@ import raylab.surface.Surface;
  * <p>Each pixel depends only on the scene and its own coordinates (samples inside a pixel come
  * from a random generator seeded by the pixel's position), so the image is bit for bit the same
  * whatever the number of threads or the order in which tiles finish.
+ *
+ * <p>Scheduling is work stealing over tiles: each thread owns a contiguous run of tiles (row-major,
+ * so neighbouring tiles share cache) and takes them from its own cursor, which no other thread
+ * touches until it runs out of its own tiles and steals from the others' cursors. The cursors sit
+ * 64 bytes apart, so the hot path shares no mutable counter.
  */
 public final class Renderer {
     /** Tile edge in pixels. */
@@ -60,14 +65,14 @@ public final class Renderer {
         int tilesY = (scene.height + TILE - 1) / TILE;
         int tiles = tilesX * tilesY;
         Image image = new Image(scene.width, scene.height);
-        AtomicInteger next = new AtomicInteger();
         long t0 = System.nanoTime();
         int n = Math.max(1, Math.min(threads, tiles));
+        Tiles next = new Tiles(tiles, n);
         List<RenderStats> perThread = new ArrayList<>();
         if (n == 1) {
             RenderStats s = new RenderStats();
             perThread.add(s);
-            work(image, next, tiles, tilesX, s, tileDone);
+            work(image, next, 0, tilesX, s, tileDone);
         } else {
             ExecutorService pool = Executors.newFixedThreadPool(n, r -> {
                 Thread t = new Thread(r, "raylab-render");
@@ -79,7 +84,8 @@ public final class Renderer {
                 for (int i = 0; i < n; i++) {
                     RenderStats s = new RenderStats();
                     perThread.add(s);
-                    futures.add(pool.submit(() -> work(image, next, tiles, tilesX, s, tileDone)));
+                    int id = i;
+                    futures.add(pool.submit(() -> work(image, next, id, tilesX, s, tileDone)));
                 }
                 for (Future<?> f : futures) {
                     f.get();
@@ -88,7 +94,7 @@ public final class Renderer {
                 Thread.currentThread().interrupt();
                 throw new IllegalStateException("render interrupted", e);
             } catch (ExecutionException e) {
-                next.set(tiles);
+                next.stop();
                 Throwable cause = e.getCause();
                 if (cause instanceof RuntimeException re) {
                     throw re;
@@ -109,12 +115,49 @@ public final class Renderer {
         return image;
     }
 
-    private void work(Image image, AtomicInteger next, int tiles, int tilesX, RenderStats stats,
+    /** Per-thread runs of tile indices with their cursors, 16 ints (64 bytes) apart. */
+    private static final class Tiles {
+        private final AtomicIntegerArray cursor;
+        private final int[] end;
+
+        Tiles(int tiles, int threads) {
+            cursor = new AtomicIntegerArray(16 * threads);
+            end = new int[threads];
+            for (int i = 0; i < threads; i++) {
+                cursor.set(16 * i, (int) ((long) tiles * i / threads));
+                end[i] = (int) ((long) tiles * (i + 1) / threads);
+            }
+        }
+
+        /** The next tile for thread {@code self}: its own first, then stolen; −1 when none is left. */
+        int next(int self) {
+            int n = end.length;
+            for (int k = 0; k < n; k++) {
+                int owner = self + k < n ? self + k : self + k - n;
+                if (cursor.get(16 * owner) < end[owner]) {
+                    int tile = cursor.getAndIncrement(16 * owner);
+                    if (tile < end[owner]) {
+                        return tile;
+                    }
+                }
+            }
+            return -1;
+        }
+
+        /** No more tiles for anyone (a thread failed). */
+        void stop() {
+            for (int i = 0; i < end.length; i++) {
+                cursor.set(16 * i, end[i]);
+            }
+        }
+    }
+
+    private void work(Image image, Tiles next, int self, int tilesX, RenderStats stats,
             IntConsumer tileDone) {
         Shader shader = new Shader(scene, root, plan, mode);
         IntersectionRecord rec = new IntersectionRecord();
         int tile;
-        while ((tile = next.getAndIncrement()) < tiles) {
+        while ((tile = next.next(self)) >= 0) {
             int x0 = (tile % tilesX) * TILE;
             int y0 = (tile / tilesX) * TILE;
             int x1 = Math.min(scene.width, x0 + TILE);

@@ -388,26 +388,28 @@ public final class SceneLoader {
         double scale = n.has("scale") ? positive(n.get("scale"), "scale") : 1;
         Vec3 translate = n.has("translate") ? vec3(n.get("translate")) : Vec3.ZERO;
         Path obj = dir == null ? Path.of(rel) : dir.resolve(rel);
-        List<Vec3[]> read;
+        double[] v;
         try {
-            read = ObjLoader.readTriangles(obj, obj.toString());
+            v = ObjLoader.read(obj, obj.toString()).triangleVertices();
         } catch (ObjLoader.ObjException e) {
             throw fail(fileNode, e.getMessage());
         } catch (java.nio.file.InvalidPathException e) {
             throw fail(fileNode, "invalid path " + JsonTree.quote(rel));
         }
-        List<Triangle> triangles = new ArrayList<>(read.size());
-        for (Vec3[] t : read) {
-            Vec3 a = t[0].times(scale).plus(translate);
-            Vec3 bb = t[1].times(scale).plus(translate);
-            Vec3 c = t[2].times(scale).plus(translate);
-            if (!a.isFinite() || !bb.isFinite() || !c.isFinite()) {
+        // Each coordinate as Vec3.times(scale).plus(translate) would compute it.
+        double tx = translate.x;
+        double ty = translate.y;
+        double tz = translate.z;
+        for (int i = 0; i < v.length; i += 3) {
+            v[i] = v[i] * scale + tx;
+            v[i + 1] = v[i + 1] * scale + ty;
+            v[i + 2] = v[i + 2] * scale + tz;
+            if (!Double.isFinite(v[i]) || !Double.isFinite(v[i + 1]) || !Double.isFinite(v[i + 2])) {
                 throw fail(n.has("scale") ? n.get("scale") : fileNode, "scaling and translating "
                         + obj + " gives coordinates too large to represent");
             }
-            triangles.add(new Triangle(a, bb, c, m, name + " triangle #" + triangles.size()));
         }
-        return new Mesh(triangles, name);
+        return new Mesh(v, m, name);
     }
 
     private Material materialRef(Node n, Map<String, Material> materials) throws SceneException {

@@ -93,6 +93,12 @@ public class Triangle extends Surface {
     }
 
     // BEGIN SOLUTION triangle
+    /**
+     * Marks the reference solution: Mesh's packed kernel repeats it operation for operation, so
+     * meshes use that kernel only while this marker is here (docs/mesh-engine.md).
+     */
+    static final boolean REFERENCE_KERNEL = true;
+
     private static int largestAxis(Vec3 d) {
         double x = Math.abs(d.x);
         double y = Math.abs(d.y);

@@ -101,4 +101,113 @@ class ObjLoaderTest {
                 assertThrows(ObjLoader.ObjException.class,
                         () -> ObjLoader.readTriangles(bin, "bin.obj")).getMessage());
     }
+
+    @Test
+    void aUtf8ByteOrderMarkIsSkipped(@TempDir Path tmp) throws Exception {
+        Path f = tmp.resolve("bom.obj");
+        byte[] text = "v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 3\n".getBytes(java.nio.charset.StandardCharsets.US_ASCII);
+        byte[] withBom = new byte[text.length + 3];
+        withBom[0] = (byte) 0xEF;
+        withBom[1] = (byte) 0xBB;
+        withBom[2] = (byte) 0xBF;
+        System.arraycopy(text, 0, withBom, 3, text.length);
+        Files.write(f, withBom);
+        List<Vec3[]> t = ObjLoader.readTriangles(f, "bom.obj");
+        assertArrayEquals(new Vec3[] {A, B, C}, t.get(0));
+    }
+
+    @Test
+    void devicesAndFifosAreRefusedBeforeReading(@TempDir Path tmp) throws Exception {
+        Path zero = Path.of("/dev/zero");
+        org.junit.jupiter.api.Assumptions.assumeTrue(Files.exists(zero), "no /dev/zero here");
+        String expected = "zero.obj: not a regular file (a device, FIFO or socket); an OBJ file must be a regular file";
+        assertEquals(expected, assertThrows(ObjLoader.ObjException.class,
+                () -> ObjLoader.readTriangles(zero, "zero.obj")).getMessage());
+        Path fifo = tmp.resolve("pipe.obj");
+        Process p = new ProcessBuilder("mkfifo", fifo.toString()).redirectErrorStream(true).start();
+        org.junit.jupiter.api.Assumptions.assumeTrue(p.waitFor() == 0 && Files.exists(fifo), "no mkfifo here");
+        // Opening a FIFO with no writer would block forever: the check must come first.
+        assertEquals(expected.replace("zero.obj", "pipe.obj"), assertThrows(ObjLoader.ObjException.class,
+                () -> ObjLoader.readTriangles(fifo, "pipe.obj")).getMessage());
+    }
+
+    @Test
+    void filesLargerThanTheCapAreRefused(@TempDir Path tmp) throws Exception {
+        Path f = tmp.resolve("big.obj");
+        Files.writeString(f, "v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 3\n");
+        assertEquals("big.obj: too large (32 bytes; the limit is 20 bytes, set by -Draylab.obj.maxBytes)",
+                assertThrows(ObjLoader.ObjException.class, () -> ObjLoader.readBytes(f, "big.obj", 20)).getMessage());
+        assertEquals(32, ObjLoader.readBytes(f, "big.obj", 32).length, "exactly at the cap is fine");
+    }
+
+    /** Random numbers in every form the grammar allows, some beyond the fast path. */
+    static String randomNumber(java.util.SplittableRandom r) {
+        StringBuilder s = new StringBuilder();
+        switch (r.nextInt(3)) {
+            case 0 -> s.append('-');
+            case 1 -> s.append(r.nextInt(4) == 0 ? "+" : "");
+            default -> { }
+        }
+        int intDigits = r.nextInt(4) == 0 ? 0 : 1 + r.nextInt(r.nextInt(5) == 0 ? 22 : 8);
+        int fracDigits = r.nextInt(4) == 0 ? 0 : 1 + r.nextInt(r.nextInt(5) == 0 ? 22 : 9);
+        if (intDigits == 0 && fracDigits == 0) {
+            intDigits = 1;
+        }
+        for (int i = 0; i < intDigits; i++) {
+            s.append((char) ('0' + r.nextInt(10)));
+        }
+        if (fracDigits > 0 || r.nextInt(8) == 0) {
+            s.append('.');
+        }
+        for (int i = 0; i < fracDigits; i++) {
+            s.append((char) ('0' + (r.nextInt(3) == 0 ? 0 : r.nextInt(10))));
+        }
+        if (r.nextInt(3) == 0) {
+            s.append(r.nextBoolean() ? 'e' : 'E');
+            s.append(r.nextInt(3) == 0 ? "-" : r.nextInt(2) == 0 ? "+" : "");
+            s.append(r.nextInt(r.nextInt(4) == 0 ? 330 : 30));
+        }
+        return s.toString();
+    }
+
+    @ParameterizedTest(name = "seed {0}")
+    @org.junit.jupiter.params.provider.ValueSource(longs = {1, 2, 3, 4, 5})
+    void coordinatesAreParsedExactlyAsDoubleParseDouble(long seed) throws Exception {
+        java.util.SplittableRandom r = new java.util.SplittableRandom(seed);
+        StringBuilder obj = new StringBuilder();
+        List<String> numbers = new java.util.ArrayList<>();
+        for (int i = 0; i < 3000; i++) {
+            String x = randomNumber(r);
+            if (!Double.isFinite(Double.parseDouble(x))) {
+                continue;
+            }
+            numbers.add(x);
+        }
+        while (numbers.size() % 3 != 0) {
+            numbers.remove(numbers.size() - 1);
+        }
+        for (int i = 0; i < numbers.size(); i += 3) {
+            obj.append("v ").append(numbers.get(i)).append(' ').append(numbers.get(i + 1)).append(' ')
+                    .append(numbers.get(i + 2)).append('\n');
+        }
+        obj.append("f 1 2 3\n");
+        ObjLoader.Indexed m = ObjLoader.parse(obj.toString().getBytes(java.nio.charset.StandardCharsets.US_ASCII), "n.obj");
+        for (int i = 0; i < numbers.size(); i++) {
+            double want = Double.parseDouble(numbers.get(i));
+            assertEquals(Double.doubleToRawLongBits(want), Double.doubleToRawLongBits(m.vertices()[i]),
+                    "seed " + seed + ": '" + numbers.get(i) + "' read as " + m.vertices()[i] + ", not " + want);
+        }
+    }
+
+    @Test
+    void facesAreStoredAsIndicesIntoTheVertices() throws Exception {
+        ObjLoader.Indexed m = ObjLoader.parse((PENTAGON_VERTICES + "f 1 2 3 4 5\nf -1 -2 -3\n")
+                .getBytes(java.nio.charset.StandardCharsets.US_ASCII), "m.obj");
+        assertEquals(4, m.triangleCount());
+        assertArrayEquals(new int[] {0, 1, 2, 0, 2, 3, 0, 3, 4, 4, 3, 2}, m.indices());
+        double[] v = m.triangleVertices();
+        assertEquals(36, v.length);
+        assertEquals(0.5, v[27]); // fourth triangle's first vertex is E = (0.5, 2, 0)
+        assertEquals(2.0, v[28]);
+    }
 }
