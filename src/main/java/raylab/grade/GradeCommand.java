@@ -62,7 +62,7 @@ public final class GradeCommand implements Callable<Integer> {
 
     @Option(names = "--sandbox", paramLabel = "MODE", hidden = true,
             description = "Isolation of student code: auto (default), namespace, user, none (for tests).")
-    Sandbox.Mode sandbox = Sandbox.Mode.AUTO;
+    String sandbox = "auto";
 
     @Option(names = "--quiet", description = "Print only the total score.")
     boolean quiet;
@@ -77,12 +77,22 @@ public final class GradeCommand implements Callable<Integer> {
                         Duration.ofSeconds(sceneTimeout))
                 .withSandboxUser(sandboxUser);
         o = new Grader.Options(o.root(), o.milestones(), o.limits(), o.sceneLimit(), heap, cache == null
-                ? o.cacheDir() : cache.toAbsolutePath(), o.sandboxUser(), o.parallel()).withSandboxMode(sandbox);
+                ? o.cacheDir() : cache.toAbsolutePath(), o.sandboxUser(), o.parallel()).withSandboxMode(mode(sandbox));
         return run(o, submission, out, s -> {
             if (!quiet) {
                 System.err.println(s);
             }
         }, quiet, stdout);
+    }
+
+    private static Sandbox.Mode mode(String s) {
+        for (Sandbox.Mode m : Sandbox.Mode.values()) {
+            if (m.name().equalsIgnoreCase(s)) {
+                return m;
+            }
+        }
+        throw new picocli.CommandLine.ParameterException(new picocli.CommandLine(new GradeCommand()),
+                "--sandbox: one of auto, namespace, user, none");
     }
 
     /**

@@ -146,7 +146,9 @@ public final class Grader {
         // in a folder others may cross but not list.
         Path workParent = options.cacheDir().toAbsolutePath().resolve("work");
         Files.createDirectories(workParent);
-        Path work = traversableByAll(workParent) ? Files.createTempDirectory(workParent, "grade")
+        // Without a sandbox the child could walk up from its folder: then the system's temporary folder.
+        Path work = sandbox.mode() != Sandbox.Mode.NONE && traversableByAll(workParent)
+                ? Files.createTempDirectory(workParent, "grade")
                 : Files.createTempDirectory("raylab-grade");
         Sandbox.workFolder(work);
         Map<String, GradeReport.Milestone> results = new LinkedHashMap<>();
