@@ -120,7 +120,8 @@ public final class TestLauncher {
         new SecureRandom().nextBytes(key);
 
         ProcessBuilder pb = new ProcessBuilder(cmd).directory(workDir.toFile())
-                .redirectError(ProcessBuilder.Redirect.DISCARD);
+                .redirectError(System.getenv("RAYLAB_DEBUG_CHILD") == null ? ProcessBuilder.Redirect.DISCARD
+                        : ProcessBuilder.Redirect.appendTo(new File(System.getenv("RAYLAB_DEBUG_CHILD"))));
         pb.environment().keySet().removeIf(k -> k.startsWith("JAVA_TOOL") || k.startsWith("_JAVA_OPTIONS")
                 || k.equals("JDK_JAVA_OPTIONS"));
         Process p = pb.start();

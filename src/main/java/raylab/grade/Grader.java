@@ -86,6 +86,8 @@ public final class Grader {
     private final Options options;
     private final Consumer<String> log;
     private List<Assignment> allAssignments = List.of();
+    /** Text found only in hidden classes: never shown in a visible test's output or message. */
+    private java.util.Set<String> hiddenTexts = java.util.Set.of();
     /** Reference PNG bytes by reference path, read before any student code ran (null: none). */
     private final Map<String, byte[]> references = java.util.Collections.synchronizedMap(new java.util.HashMap<>());
 
@@ -122,6 +124,7 @@ public final class Grader {
         GraderSetup setup = GraderSetup.prepare(root, selected, options.cacheDir().toAbsolutePath(), log);
         notes.addAll(setup.notes);
         this.allAssignments = all.all();
+        this.hiddenTexts = hiddenTexts(setup, all.all());
         // Every reference image is read before any student code runs.
         for (Assignment a : selected) {
             for (Assignment.GradedScene sc : a.scenes()) {
@@ -287,7 +290,80 @@ public final class Grader {
         tests.addAll(scoreTests(a, setup, expected, got));
         // Scenes.
         tests.addAll(gradeScenes(a, layers, setup, mdir, scenesCopy, sandbox));
-        return new GradeReport.Milestone(a.id(), a.title(), notes, tests);
+        return new GradeReport.Milestone(a.id(), a.title(), notes.stream().map(this::withheld).toList(),
+                tests.stream().map(this::withheld).toList());
+    }
+
+    private static final String WITHHELD = "(withheld: it contains text of the hidden tests)";
+
+    /** A visible test's message and output, unless they contain text of the hidden tests. */
+    private GradeReport.Test withheld(GradeReport.Test t) {
+        if (!"visible".equals(t.visibility())) {
+            return t;
+        }
+        String m = withheld(t.message());
+        String o = withheld(t.output());
+        if (m.equals(t.message()) && o.equals(t.output())) {
+            return t;
+        }
+        return new GradeReport.Test(t.milestone(), t.name(), t.kind(), t.maxScore(), t.score(), t.passed(), m, o,
+                t.visibility(), t.millis(), t.file(), t.images());
+    }
+
+    private String withheld(String text) {
+        if (text == null || text.isEmpty()) {
+            return text == null ? "" : text;
+        }
+        for (String h : hiddenTexts) {
+            if (text.contains(h)) {
+                return WITHHELD;
+            }
+        }
+        return text;
+    }
+
+    /**
+     * Text of the hidden classes (hidden tests, hidden data cases, hidden helpers) that no visible
+     * class has: their names, and their text constants with a space in them (messages, hints).
+     */
+    private static java.util.Set<String> hiddenTexts(GraderSetup setup, List<Assignment> all) {
+        java.util.Set<String> visibleClasses = new java.util.HashSet<>();
+        for (Assignment a : all) {
+            a.tests().visible().forEach(v -> visibleClasses.add(GraderSetup.testClassName(v)));
+            visibleClasses.add(DataCases.visibleClassName(a.id()));
+        }
+        java.util.Set<String> hiddenClasses = new java.util.HashSet<>();
+        setup.testClasses.values().forEach(l -> l.stream().filter(c -> !visibleClasses.contains(c))
+                .forEach(hiddenClasses::add));
+        java.util.Set<String> hidden = new java.util.HashSet<>();
+        java.util.Set<String> shared = new java.util.HashSet<>();
+        try (Stream<Path> s = Files.walk(setup.tests)) {
+            for (Path p : (Iterable<Path>) s.filter(f -> f.toString().endsWith(".class"))::iterator) {
+                String rel = setup.tests.relativize(p).toString().replace('\\', '/');
+                String outer = GraderSetup.outer(rel.substring(0, rel.length() - 6).replace('/', '.'));
+                boolean isHidden = hiddenClasses.contains(outer)
+                        || (outer.startsWith("raylab.hidden.") && !outer.startsWith("raylab.hidden.RenderMany"));
+                java.util.Set<String> strings = ClassStrings.of(Files.readAllBytes(p));
+                if (isHidden) {
+                    hidden.addAll(strings);
+                    hidden.add(outer);
+                    hidden.add(outer.replace('.', '/'));
+                } else {
+                    shared.addAll(strings);
+                }
+            }
+        } catch (IOException e) {
+            return java.util.Set.of();
+        }
+        java.util.Set<String> out = new java.util.HashSet<>();
+        for (String h : hidden) {
+            boolean name = h.contains("Hidden") || hiddenClasses.contains(h) || hiddenClasses.contains(h.replace('/', '.'));
+            boolean text = h.length() >= 12 && h.indexOf(' ') >= 0 && !h.isBlank();
+            if (!shared.contains(h) && (name || text)) {
+                out.add(h);
+            }
+        }
+        return out;
     }
 
     /** Every test class name of every milestone (outer names). */

@@ -60,8 +60,8 @@ class GraderAttackTest {
     record Run(JsonNode results, String classroom, int connections, String tag, Path out, Path cache, int status) {
     }
 
-    /** Grades the attack submission (milestone sphere) in the given mode. */
-    private Run attack(String mode, String... extra) throws Exception {
+    /** Grades the attack submission (milestone sphere) in the given mode, with the given sandbox user ("" for none). */
+    private Run attack(String mode, String user) throws Exception {
         long tag = 31_000 + new SplittableRandom(System.nanoTime()).nextInt(9_000);
         Path cache = root.resolve("target/grader-cache");
         Path out = Files.createDirectories(dir.resolve("out-" + mode));
@@ -92,10 +92,8 @@ class GraderAttackTest {
             Files.writeString(sub.resolve("Sphere.java"), attack);
             String[] base = {"grade", sub.toString(), "--out", out.toString(), "--root", root.toString(), "--quiet",
                 "--test-timeout", "5", "--milestone-timeout", "60", "--scene-timeout", "30", "--heap", "256",
-                "--milestone", "sphere", "--sandbox", mode};
-            String[] args = new String[base.length + extra.length];
-            System.arraycopy(base, 0, args, 0, base.length);
-            System.arraycopy(extra, 0, args, base.length, extra.length);
+                "--milestone", "sphere", "--sandbox", mode, "--sandbox-user", user};
+            String[] args = base;
             ByteArrayOutputStream err = new ByteArrayOutputStream();
             int status = Main.run(new PrintWriter(new ByteArrayOutputStream(), true),
                     new PrintWriter(err, true, StandardCharsets.UTF_8), args);
@@ -108,28 +106,35 @@ class GraderAttackTest {
         }
     }
 
-    /** What every mode guarantees. */
-    private static void assertFailClosed(Run run) throws IOException {
-        assertEquals(0, run.status(), "graded");
-        GraderTest.checkSchema(run.results());
-        assertFalse(run.results().toString().contains("forged " + run.tag()), "no results.json written after the grader's");
-        double score = 0;
-        double max = 0;
+    /** Nothing of the hidden classes in what the student sees at once. */
+    private static void assertHiddenStaysHidden(Run run) throws IOException {
         for (JsonNode t : run.results().get("tests")) {
-            score += t.get("score").asDouble();
-            max += t.get("max_score").asDouble();
             if (t.get("visibility").asText().equals("visible")) {
                 String shown = t.get("output").asText();
                 assertFalse(shown.contains("Hidden") || shown.contains("SphereCasesTest"), "hidden data shown: " + shown);
             }
         }
-        // A sphere that never hits passes only the miss tests: far below half the points.
-        assertTrue(score < max / 2, "no forged or borrowed points: " + score + " of " + max);
         for (JsonNode t : JSON.readTree(run.classroom()).get("tests")) {
             String m = t.get("message").asText();
             assertFalse(m.contains("Hidden") || m.contains("SphereCasesTest") || m.contains("rays seen"),
                     "classroom.json shows hidden details: " + m);
         }
+    }
+
+    /** What every mode guarantees. */
+    private static void assertFailClosed(Run run) throws IOException {
+        assertEquals(0, run.status(), "graded");
+        GraderTest.checkSchema(run.results());
+        assertFalse(run.results().toString().contains("forged " + run.tag()), "no results.json written after the grader's");
+        assertHiddenStaysHidden(run);
+        double score = 0;
+        double max = 0;
+        for (JsonNode t : run.results().get("tests")) {
+            score += t.get("score").asDouble();
+            max += t.get("max_score").asDouble();
+        }
+        // A sphere that never hits passes only the miss tests: far below half the points.
+        assertTrue(score < max / 2, "no forged or borrowed points: " + score + " of " + max);
         assertTrue(ProcessHandle.allProcesses().noneMatch(p -> p.info().commandLine().orElse("")
                 .contains("sleep " + run.tag())), "the detached process was killed");
         assertTrue(Files.isRegularFile(root.resolve("grader/tests/raylab/hidden/Hidden.java")), "grader sources intact");
@@ -153,7 +158,7 @@ class GraderAttackTest {
     @Test
     void namespaceSandboxWithTheSandboxUser() throws Exception {
         assumeTrue(namespaces(), "unshare cannot create namespaces here");
-        Run run = attack("namespace");
+        Run run = attack("namespace", GraderTest.sandboxUser());
         assertTrue(run.results().get("output").asText().contains("sandbox: namespaces"), run.results().get("output").asText());
         assertFailClosed(run);
         assertGraderFilesOutOfReach(run);
@@ -163,7 +168,7 @@ class GraderAttackTest {
     @Test
     void namespaceSandboxWithoutTheSandboxUser() throws Exception {
         assumeTrue(namespaces(), "unshare cannot create namespaces here");
-        Run run = attack("namespace", "--sandbox-user", "");
+        Run run = attack("namespace", "");
         assertFailClosed(run);
         assertGraderFilesOutOfReach(run);
         assertIsolated(run);
@@ -171,9 +176,9 @@ class GraderAttackTest {
 
     @Test
     void sandboxUserWithoutNamespaces() throws Exception {
-        assumeTrue(Sandbox.isRoot() && Files.readString(Path.of("/etc/passwd")).contains("\n" + Sandbox.DEFAULT_USER + ":"),
-                "needs root and the user " + Sandbox.DEFAULT_USER + " (.ci/run creates it)");
-        Run run = attack("user");
+        assumeTrue(Sandbox.isRoot() && Files.readString(Path.of("/etc/passwd")).contains("\n" + GraderTest.sandboxUser() + ":"),
+                "needs root and the user " + GraderTest.sandboxUser() + " (.ci/run creates it)");
+        Run run = attack("user", GraderTest.sandboxUser());
         assertTrue(run.results().get("output").asText().contains("sandbox: user"), run.results().get("output").asText());
         assertFailClosed(run);
         assertGraderFilesOutOfReach(run);
@@ -183,12 +188,16 @@ class GraderAttackTest {
 
     @Test
     void noSandboxAtAll() throws Exception {
-        Run run = attack("none", "--sandbox-user", "");
+        Run run = attack("none", "");
         assertTrue(run.results().get("output").asText().contains("sandbox: none"), run.results().get("output").asText());
         // Not isolated in this mode (README): network, /tmp, the grader's files; the reference
-        // classes in the cache are readable, so the score is not asserted here.
+        // classes in the cache are readable, so the score is not asserted here. What the
+        // submission copied out of the hidden classes is withheld from visible outputs.
         assertEquals(0, run.status());
         GraderTest.checkSchema(run.results());
+        assertHiddenStaysHidden(run);
+        assertTrue(run.results().toString().contains("withheld: it contains text of the hidden tests"),
+                "the attack did print hidden text, and it was withheld");
         assertFalse(run.results().toString().contains("forged " + run.tag()), "no results.json written after the grader's");
         assertTrue(ProcessHandle.allProcesses().noneMatch(p -> p.info().commandLine().orElse("")
                 .contains("sleep " + run.tag())), "the detached process was killed");
