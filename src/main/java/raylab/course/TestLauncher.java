@@ -8,6 +8,7 @@ import java.io.InputStreamReader;
 import java.io.OutputStream;
 import java.nio.charset.StandardCharsets;
 import java.nio.file.Path;
+import java.security.MessageDigest;
 import java.security.SecureRandom;
 import java.time.Duration;
 import java.util.ArrayList;
@@ -17,6 +18,9 @@ import java.util.List;
 import java.util.Map;
 import java.util.concurrent.TimeUnit;
 import java.util.stream.Collectors;
+
+import javax.crypto.Mac;
+import javax.crypto.spec.SecretKeySpec;
 
 import com.fasterxml.jackson.databind.ObjectMapper;
 
@@ -45,6 +49,12 @@ public final class TestLauncher {
     }
 
     private static final ObjectMapper JSON = new ObjectMapper();
+
+    /**
+     * The only modules a child JVM sees: no {@code jdk.unsupported} (no {@code sun.misc.Unsafe}),
+     * no {@code java.instrument}, {@code jdk.attach}, {@code jdk.jdi} or management modules.
+     */
+    public static final String CHILD_MODULES = "java.base,java.desktop,java.logging,java.xml,java.sql";
 
     private TestLauncher() {
     }
@@ -86,6 +96,7 @@ public final class TestLauncher {
         List<String> cmd = new ArrayList<>(wrapper);
         cmd.addAll(List.of(java, "-Xmx" + limits.heapMegabytes() + "m", "-Xss1m",
                 "-XX:+UseSerialGC", "-XX:TieredStopAtLevel=1", "-Djava.awt.headless=true",
+                "-XX:+DisableAttachMechanism", "-XX:-UsePerfData", "--limit-modules", CHILD_MODULES,
                 "-Dfile.encoding=UTF-8", "-cp",
                 classPath.stream().map(Path::toString).collect(Collectors.joining(File.pathSeparator)),
                 TestMain.class.getName(), "--timeout", Integer.toString(limits.perTestSeconds()),
@@ -105,17 +116,17 @@ public final class TestLauncher {
         if (list) {
             cmd.add("--list");
         }
-        byte[] raw = new byte[16];
-        new SecureRandom().nextBytes(raw);
-        String token = "RAYLAB-" + HexFormat.of().formatHex(raw);
+        byte[] key = new byte[32];
+        new SecureRandom().nextBytes(key);
 
         ProcessBuilder pb = new ProcessBuilder(cmd).directory(workDir.toFile())
-                .redirectError(ProcessBuilder.Redirect.DISCARD);
+                .redirectError(System.getenv("RAYLAB_DEBUG_CHILD") == null ? ProcessBuilder.Redirect.DISCARD
+                        : ProcessBuilder.Redirect.appendTo(new File(System.getenv("RAYLAB_DEBUG_CHILD"))));
         pb.environment().keySet().removeIf(k -> k.startsWith("JAVA_TOOL") || k.startsWith("_JAVA_OPTIONS")
                 || k.equals("JDK_JAVA_OPTIONS"));
         Process p = pb.start();
         try (OutputStream stdin = p.getOutputStream()) {
-            stdin.write((token + "\n").getBytes(StandardCharsets.UTF_8));
+            stdin.write((HexFormat.of().formatHex(key) + "\n").getBytes(StandardCharsets.UTF_8));
         } catch (IOException ignored) {
             // the child died at once; reported below
         }
@@ -123,7 +134,7 @@ public final class TestLauncher {
         List<String> containerFailures = new ArrayList<>();
         String[] current = {null};
         boolean[] ended = {false};
-        Thread reader = new Thread(() -> readProtocol(p.getInputStream(), token, results, current, ended,
+        Thread reader = new Thread(() -> readProtocol(p.getInputStream(), key, results, current, ended,
                 containerFailures), "raylab-test-reader");
         reader.setDaemon(true);
         reader.start();
@@ -178,27 +189,66 @@ public final class TestLauncher {
         }
     }
 
-    private static void readProtocol(InputStream in, String token, Map<String, TestResult> results,
+    /**
+     * The payload of an authentic protocol line ({@code R2 MAC SEQ PAYLOAD}, see
+     * {@link TestMain.Channel}) with the next sequence number, else null.
+     */
+    public static String verify(Mac mac, String line, long[] seq) {
+        if (!line.startsWith("R2 ") || line.length() < 3 + 64 + 3) {
+            return null;
+        }
+        String tag = line.substring(3, 3 + 64);
+        String body = line.substring(3 + 64 + 1);
+        byte[] want = mac.doFinal(body.getBytes(StandardCharsets.UTF_8));
+        byte[] got;
+        try {
+            got = HexFormat.of().parseHex(tag);
+        } catch (IllegalArgumentException e) {
+            return null;
+        }
+        if (!MessageDigest.isEqual(want, got)) {
+            return null;
+        }
+        int k = body.indexOf(' ');
+        if (k < 0 || !body.substring(0, k).equals(Long.toString(seq[0] + 1))) {
+            return null;
+        }
+        seq[0]++;
+        return body.substring(k + 1);
+    }
+
+    private static void readProtocol(InputStream in, byte[] key, Map<String, TestResult> results,
             String[] current, boolean[] ended, List<String> containerFailures) {
-        String prefix = token + " ";
+        Mac mac;
+        try {
+            mac = Mac.getInstance("HmacSHA256");
+            mac.init(new SecretKeySpec(key, "HmacSHA256"));
+        } catch (java.security.GeneralSecurityException e) {
+            throw new IllegalStateException(e);
+        }
+        long[] seq = {0};
         try (BufferedReader r = new BufferedReader(new InputStreamReader(in, StandardCharsets.UTF_8))) {
             String line;
             long total = 0;
             while ((line = r.readLine()) != null) {
                 total += line.length();
-                if (!line.startsWith(prefix)) {
+                String rest = verify(mac, line, seq);
+                if (rest == null) {
                     if (total > 64L * 1024 * 1024) {
                         break; // a flood of output outside the protocol: stop listening
                     }
                     continue;
                 }
-                String rest = line.substring(prefix.length());
                 synchronized (results) {
                     if (rest.startsWith("START ")) {
                         current[0] = rest.substring(6);
                     } else if (rest.startsWith("RESULT ")) {
                         TestResult t = JSON.readValue(rest.substring(7), TestResult.class);
-                        results.put(t.id(), t);
+                        TestResult before = results.putIfAbsent(t.id(), t);
+                        if (before != null) {
+                            // JUnit reports a test once: a second report is not trusted, whatever it says.
+                            results.put(t.id(), t.with(TestResult.Status.FAILED, "this test was reported twice"));
+                        }
                     } else if (rest.startsWith("CONTAINER ")) {
                         String s = rest.substring(10);
                         int k = s.indexOf(' ');

@@ -1,21 +1,24 @@
 package raylab.course;
 
-import java.io.BufferedReader;
 import java.io.ByteArrayOutputStream;
 import java.io.FileDescriptor;
 import java.io.FileOutputStream;
 import java.io.InputStream;
-import java.io.InputStreamReader;
+import java.io.FileInputStream;
 import java.io.OutputStream;
 import java.io.PrintStream;
 import java.nio.charset.StandardCharsets;
 import java.nio.file.Path;
 import java.util.ArrayList;
-import java.util.HashSet;
+import java.util.Arrays;
+import java.util.HexFormat;
 import java.util.List;
 import java.util.Map;
 import java.util.Set;
 import java.util.concurrent.ConcurrentHashMap;
+
+import javax.crypto.Mac;
+import javax.crypto.spec.SecretKeySpec;
 
 import org.junit.platform.engine.TestExecutionResult;
 import org.junit.platform.engine.discovery.DiscoverySelectors;
@@ -34,10 +37,10 @@ import com.fasterxml.jackson.databind.ObjectMapper;
 /**
  * The test runner inside a child JVM started by {@link TestLauncher}. Not for people to run.
  *
- * <p>It reads a one-line token from standard input, then runs the selected JUnit tests and
- * reports each on the original standard output as {@code TOKEN START id},
- * {@code TOKEN RESULT json} and finally {@code TOKEN END}. What the tests print goes to a capped
- * buffer attached to their result, so output cannot forge a report without the token.
+ * <p>It reads a one-line key (hex) from standard input, then runs the selected JUnit tests and
+ * reports each on the original standard output through a {@link Channel} as {@code START id},
+ * {@code RESULT json} and finally {@code END}, each line authenticated with the key. What the
+ * tests print goes to a capped buffer attached to their result.
  * Arguments: {@code --test-classes DIR} (scanned for tests), {@code --tag T} (repeatable),
  * {@code --class NAME} (repeatable), {@code --timeout S} (per test), {@code --output-cap BYTES},
  * {@code --list} (report the discovered tests without running them).
@@ -47,14 +50,23 @@ public final class TestMain {
     }
 
     public static void main(String[] args) throws Exception {
-        BufferedReader in = new BufferedReader(new InputStreamReader(System.in, StandardCharsets.UTF_8));
-        String token = in.readLine();
-        if (token == null || token.isBlank()) {
-            System.err.println("TestMain: expected a token on standard input");
+        // The key: one line of hex on standard input, read byte by byte (no buffer keeps a copy).
+        FileInputStream stdin = new FileInputStream(FileDescriptor.in);
+        byte[] hex = new byte[128];
+        int n = 0;
+        for (int b; n < hex.length && (b = stdin.read()) >= 0 && b != '\n';) {
+            hex[n++] = (byte) b;
+        }
+        if (n == 0) {
+            System.err.println("TestMain: expected a key on standard input");
             System.exit(2);
         }
+        byte[] key = HexFormat.of().parseHex(new String(hex, 0, n, StandardCharsets.US_ASCII));
+        Arrays.fill(hex, (byte) 0);
         System.setIn(InputStream.nullInputStream());
-        PrintStream channel = new PrintStream(new FileOutputStream(FileDescriptor.out), true, StandardCharsets.UTF_8);
+        Channel channel = new Channel(new PrintStream(new FileOutputStream(FileDescriptor.out), true,
+                StandardCharsets.UTF_8), key);
+        Arrays.fill(key, (byte) 0);
 
         Path testClasses = null;
         List<String> tags = new ArrayList<>();
@@ -101,24 +113,22 @@ public final class TestMain {
             for (TestIdentifier root : plan.getRoots()) {
                 for (TestIdentifier t : plan.getDescendants(root)) {
                     if (t.isTest()) {
-                        channel.println(token + " RESULT " + json.writeValueAsString(
+                        channel.send("RESULT " + json.writeValueAsString(
                                 toResult(t, TestResult.Status.MISSING, "", "", 0)));
                     }
                 }
             }
-            channel.println(token + " END");
-            channel.flush();
+            channel.send("END");
             System.exit(0);
         }
         Map<String, Long> started = new ConcurrentHashMap<>();
-        Set<String> reported = new HashSet<>();
         launcher.execute(req, new TestExecutionListener() {
             @Override
             public void executionStarted(TestIdentifier t) {
                 if (t.isTest()) {
                     captured.reset();
                     started.put(t.getUniqueId(), System.nanoTime());
-                    channel.println(token + " START " + t.getUniqueId());
+                    channel.send("START " + t.getUniqueId());
                 }
             }
 
@@ -135,7 +145,7 @@ public final class TestMain {
                     if (r.getStatus() != TestExecutionResult.Status.SUCCESSFUL) {
                         // A class-level failure (for example an exception in a static initializer):
                         // the tests below it are reported by the launcher as not run.
-                        channel.println(token + " CONTAINER " + t.getUniqueId() + " " + firstLines(r));
+                        channel.send("CONTAINER " + t.getUniqueId() + " " + firstLines(r));
                     }
                     return;
                 }
@@ -150,21 +160,42 @@ public final class TestMain {
             }
 
             private void send(TestIdentifier t, TestResult.Status s, String message, long ms) {
-                if (!reported.add(t.getUniqueId())) {
-                    return;
-                }
                 try {
-                    channel.println(token + " RESULT " + json.writeValueAsString(
-                            toResult(t, s, message, captured.text(), ms)));
+                    channel.send("RESULT " + json.writeValueAsString(toResult(t, s, message, captured.text(), ms)));
                 } catch (Exception e) {
-                    channel.println(token + " ERROR " + e);
+                    channel.send("ERROR " + e.getClass().getSimpleName());
                 }
             }
         });
-        channel.println(token + " END");
-        channel.flush();
+        channel.send("END");
         // Stray threads started by the code under test must not keep this JVM alive.
         Runtime.getRuntime().halt(0);
+    }
+
+    /**
+     * The report channel: each line is {@code R2 SEQ MAC PAYLOAD}, MAC = HMAC-SHA256 over
+     * {@code SEQ PAYLOAD} with the key the parent sent; the parent accepts only lines whose MAC
+     * checks and whose SEQ follows the last one. Output written to file descriptor 1 by anything
+     * else cannot be taken for a report without the key, which is kept only inside a
+     * {@link Mac} (a java.base object that code on the class path cannot open by reflection).
+     */
+    static final class Channel {
+        private final PrintStream out;
+        private final Mac mac;
+        private long seq;
+
+        Channel(PrintStream out, byte[] key) throws java.security.GeneralSecurityException {
+            this.out = out;
+            this.mac = Mac.getInstance("HmacSHA256");
+            this.mac.init(new SecretKeySpec(key, "HmacSHA256"));
+        }
+
+        synchronized void send(String payload) {
+            String body = (++seq) + " " + payload.replace('\n', ' ').replace('\r', ' ');
+            String tag = HexFormat.of().formatHex(mac.doFinal(body.getBytes(StandardCharsets.UTF_8)));
+            out.println("R2 " + tag + " " + body);
+            out.flush();
+        }
     }
 
     static TestResult toResult(TestIdentifier t, TestResult.Status s, String message, String output, long ms) {

@@ -59,11 +59,12 @@ public final class BundleCommand implements Callable<Integer> {
             fi
             # Students' code must not read the grader's sources, jar or reference images.
             chmod 700 "$AG/source" || true
-            # Build the grader's classes and test list once, into the image (the cache is readable by all).
+            # Build the grader's classes and test list once, into the image. The grader keeps each build
+            # folder private (700); student code only sees links to the files it needs, in its own box.
             mkdir -p "$AG/cache" "$AG/source/warmup-submission"
             (cd "$AG/source" && java -jar raylab.jar grade warmup-submission --out /tmp/raylab-warmup \\
                 --root "$AG/source" --cache "$AG/cache" --quiet) || true
-            chmod -R a+rX "$AG/cache"
+            chmod 755 "$AG/cache"
             """;
 
     static final String RUN = """

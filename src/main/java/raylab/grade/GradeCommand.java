@@ -26,7 +26,7 @@ import raylab.course.TestLauncher;
             "Details: grader/README.md."},
         exitCodeListHeading = "%nExit status:%n",
         exitCodeList = {"0:graded (whatever the score)", "1:the grader could not grade (results.json still written)",
-            "2:bad option"})
+            "2:bad option, or no such submission (results.json still written)"})
 public final class GradeCommand implements Callable<Integer> {
     @Parameters(index = "0", paramLabel = "SUBMISSION", description = "Directory or zip of the student's files.")
     Path submission;
@@ -60,6 +60,10 @@ public final class GradeCommand implements Callable<Integer> {
     @Option(names = "--cache", paramLabel = "DIR", description = "Cache of built grader classes (default: ROOT/target/grader-cache).")
     Path cache;
 
+    @Option(names = "--sandbox", paramLabel = "MODE", hidden = true,
+            description = "Isolation of student code: auto (default), namespace, user, none (for tests).")
+    String sandbox = "auto";
+
     @Option(names = "--quiet", description = "Print only the total score.")
     boolean quiet;
 
@@ -67,38 +71,133 @@ public final class GradeCommand implements Callable<Integer> {
     public Integer call() throws IOException {
         PrintStream stdout = new PrintStream(new java.io.FileOutputStream(java.io.FileDescriptor.out), true,
                 StandardCharsets.UTF_8);
-        Files.createDirectories(out);
-        Set<String> before = list(out);
         Grader.Options o = Grader.Options.defaults(root.toAbsolutePath().normalize())
                 .withMilestones(milestones)
                 .withLimits(new TestLauncher.Limits(heap, Duration.ofSeconds(milestoneTimeout), testTimeout, 16 * 1024),
                         Duration.ofSeconds(sceneTimeout))
                 .withSandboxUser(sandboxUser);
         o = new Grader.Options(o.root(), o.milestones(), o.limits(), o.sceneLimit(), heap, cache == null
-                ? o.cacheDir() : cache.toAbsolutePath(), o.sandboxUser(), o.parallel());
+                ? o.cacheDir() : cache.toAbsolutePath(), o.sandboxUser(), o.parallel()).withSandboxMode(mode(sandbox));
+        return run(o, submission, out, s -> {
+            if (!quiet) {
+                System.err.println(s);
+            }
+        }, quiet, stdout);
+    }
+
+    private static Sandbox.Mode mode(String s) {
+        for (Sandbox.Mode m : Sandbox.Mode.values()) {
+            if (m.name().equalsIgnoreCase(s)) {
+                return m;
+            }
+        }
+        throw new picocli.CommandLine.ParameterException(new picocli.CommandLine(new GradeCommand()),
+                "--sandbox: one of auto, namespace, user, none");
+    }
+
+    /**
+     * Grades and writes the results, whatever happens: any {@link Throwable} of the grader itself
+     * (a {@code StackOverflowError} or an {@code OutOfMemoryError} included) becomes a results.json
+     * with score 0 that names the failure, and exit status 1. A submission that does not exist is
+     * exit status 2 (with a results.json too). The results are written after the last child
+     * process is gone, then read back and rewritten if anything changed them.
+     */
+    static int run(Grader.Options o, Path submission, Path out, java.util.function.Consumer<String> log, boolean quiet,
+            PrintStream stdout) {
         long t0 = System.nanoTime();
-        GradeReport report;
+        GradeReport report = null;
         int status = 0;
+        Set<String> before = Set.of();
         try {
-            report = new Grader(o, s -> {
-                if (!quiet) {
-                    System.err.println(s);
-                }
-            }).grade(submission);
-        } catch (IOException | RuntimeException e) {
-            report = Grader.failed(e.getMessage() == null ? e.toString() : e.getMessage(), (System.nanoTime() - t0) / 1e9);
-            System.err.println("raylab: grading failed: " + report.notes().get(0));
+            Files.createDirectories(out);
+            before = list(out);
+            if (!Files.exists(submission, java.nio.file.LinkOption.NOFOLLOW_LINKS)) {
+                report = Grader.failed(submission + ": no such file or directory (nothing was submitted)", (System.nanoTime() - t0) / 1e9);
+                System.err.println("raylab: " + oneLine(submission + ": no such file or directory"));
+                status = 2;
+            } else {
+                report = new Grader(o, log).grade(submission);
+            }
+        } catch (Throwable e) {
+            report = null;
+            String why = describe(e);
+            try {
+                report = Grader.failed(why, (System.nanoTime() - t0) / 1e9);
+            } catch (Throwable again) {
+                // no memory even for that: the minimal file below
+            }
+            System.err.println("raylab: grading failed: " + why);
             status = 1;
         }
-        removeStrayFiles(out, before);
-        Reports.writeAll(report, out);
-        if (quiet) {
-            stdout.println(Reports.summary(report).lines().findFirst().orElse(""));
-        } else {
-            Reports.table(report, stdout);
-            stdout.println("Results: " + out.resolve("results.json") + ", report: " + out.resolve("report.html"));
+        try {
+            removeStrayFiles(out, before);
+            Reports.writeAll(report, out);
+            // Re-verify: what is on disk is what the grader wrote (nothing of the submission runs any more).
+            String expected = Reports.gradescope(report);
+            if (!expected.equals(Files.readString(out.resolve("results.json"), StandardCharsets.UTF_8))) {
+                System.err.println("raylab: results.json changed after it was written; written again");
+                Reports.writeAll(report, out);
+            }
+            if (quiet) {
+                stdout.println(Reports.summary(report).lines().findFirst().orElse(""));
+            } else {
+                Reports.table(report, stdout);
+                stdout.println("Results: " + out.resolve("results.json") + ", report: " + out.resolve("report.html"));
+            }
+        } catch (Throwable e) {
+            writeMinimal(out, report == null ? "the grader failed" : String.join("; ", report.notes()), e);
+            System.err.println("raylab: writing the reports failed: " + describe(e));
+            return status == 0 ? 1 : status;
         }
         return status;
+    }
+
+    /** One line naming a failure of the grader: its type, message and where it happened. */
+    static String describe(Throwable e) {
+        String type = e.getClass().getSimpleName();
+        String msg = e instanceof StackOverflowError ? "endless recursion in the grader"
+                : e instanceof OutOfMemoryError ? "the grader ran out of memory" : e.getMessage();
+        String where = "";
+        for (StackTraceElement el : e.getStackTrace()) {
+            if (el.getClassName().startsWith("raylab.")) {
+                where = " (at " + el.getClassName() + "." + el.getMethodName() + ":" + el.getLineNumber() + ")";
+                break;
+            }
+        }
+        String s = (e instanceof java.io.IOException || e instanceof RuntimeException) && msg != null ? msg
+                : type + (msg == null ? "" : ": " + msg) + where;
+        return oneLine(s);
+    }
+
+    /** The text on one line: control characters (newlines included) escaped. */
+    static String oneLine(String s) {
+        StringBuilder b = new StringBuilder();
+        for (char c : String.valueOf(s).toCharArray()) {
+            b.append(Character.isISOControl(c) ? String.format("\\u%04x", (int) c) : String.valueOf(c));
+        }
+        return b.toString();
+    }
+
+    /** A results.json built without any library, for when even the reports could not be written. */
+    private static void writeMinimal(Path out, String why, Throwable e) {
+        StringBuilder b = new StringBuilder();
+        String text = "The autograder failed: " + why + " (" + e.getClass().getSimpleName() + "). Please tell the course staff.";
+        for (char c : text.toCharArray()) {
+            if (c == '"' || c == '\\') {
+                b.append('\\').append(c);
+            } else if (c < 32) {
+                b.append(String.format("\\u%04x", (int) c));
+            } else {
+                b.append(c);
+            }
+        }
+        try {
+            Files.createDirectories(out);
+            Files.writeString(out.resolve("results.json"), "{\"score\": 0, \"execution_time\": 0, \"output\": \"" + b
+                    + "\", \"tests\": []}\n", StandardCharsets.UTF_8);
+        } catch (Throwable ignored) {
+            // nothing more can be done
+        }
     }
 
     private static Set<String> list(Path dir) throws IOException {

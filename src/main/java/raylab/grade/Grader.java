@@ -26,7 +26,6 @@ import raylab.course.TestLauncher;
 import raylab.course.TestResult;
 import raylab.grade.GradeReport.Kind;
 import raylab.render.ImageCompare;
-import raylab.render.PngFiles;
 
 /**
  * The autograder. For each milestone M: the student's file(s) of M only are compiled over the
@@ -50,7 +49,17 @@ public final class Grader {
      * @param parallel    milestones graded at the same time
      */
     public record Options(Path root, List<String> milestones, TestLauncher.Limits limits, Duration sceneLimit,
-            int sceneHeapMb, Path cacheDir, String sandboxUser, int parallel) {
+            int sceneHeapMb, Path cacheDir, String sandboxUser, int parallel, Sandbox.Mode sandboxMode) {
+        public Options(Path root, List<String> milestones, TestLauncher.Limits limits, Duration sceneLimit,
+                int sceneHeapMb, Path cacheDir, String sandboxUser, int parallel) {
+            this(root, milestones, limits, sceneLimit, sceneHeapMb, cacheDir, sandboxUser, parallel, Sandbox.Mode.AUTO);
+        }
+
+        public Options withSandboxMode(Sandbox.Mode m) {
+            return new Options(root, milestones, limits, sceneLimit, sceneHeapMb, cacheDir, sandboxUser, parallel,
+                    m == null ? Sandbox.Mode.AUTO : m);
+        }
+
         public static Options defaults(Path root) {
             return new Options(root, List.of(), new TestLauncher.Limits(512, Duration.ofSeconds(120), 10, 16 * 1024),
                     Duration.ofSeconds(60), 512, root.resolve("target/grader-cache"), null,
@@ -58,24 +67,29 @@ public final class Grader {
         }
 
         public Options withMilestones(List<String> m) {
-            return new Options(root, m, limits, sceneLimit, sceneHeapMb, cacheDir, sandboxUser, parallel);
+            return new Options(root, m, limits, sceneLimit, sceneHeapMb, cacheDir, sandboxUser, parallel, sandboxMode);
         }
 
         public Options withLimits(TestLauncher.Limits l, Duration scene) {
-            return new Options(root, milestones, l, scene, sceneHeapMb, cacheDir, sandboxUser, parallel);
+            return new Options(root, milestones, l, scene, sceneHeapMb, cacheDir, sandboxUser, parallel, sandboxMode);
         }
 
         public Options withSandboxUser(String u) {
-            return new Options(root, milestones, limits, sceneLimit, sceneHeapMb, cacheDir, u, parallel);
+            return new Options(root, milestones, limits, sceneLimit, sceneHeapMb, cacheDir, u, parallel, sandboxMode);
         }
 
         public Options withCache(Path c) {
-            return new Options(root, milestones, limits, sceneLimit, sceneHeapMb, c, sandboxUser, parallel);
+            return new Options(root, milestones, limits, sceneLimit, sceneHeapMb, c, sandboxUser, parallel, sandboxMode);
         }
     }
 
     private final Options options;
     private final Consumer<String> log;
+    private List<Assignment> allAssignments = List.of();
+    /** Text found only in hidden classes: never shown in a visible test's output or message. */
+    private java.util.Set<String> hiddenTexts = java.util.Set.of();
+    /** Reference PNG bytes by reference path, read before any student code ran (null: none). */
+    private final Map<String, byte[]> references = java.util.Collections.synchronizedMap(new java.util.HashMap<>());
 
     public Grader(Options options, Consumer<String> log) {
         this.options = options;
@@ -103,17 +117,20 @@ public final class Grader {
             }
         }
         List<String> notes = new ArrayList<>();
-        Sandbox sandbox = Sandbox.detect(options.sandboxUser(), s -> {
+        Sandbox sandbox = Sandbox.detect(options.sandboxUser(), options.sandboxMode(), s -> {
             notes.add(s);
             log.accept(s);
         });
         GraderSetup setup = GraderSetup.prepare(root, selected, options.cacheDir().toAbsolutePath(), log);
         notes.addAll(setup.notes);
-        if (sandbox.active() && !traversableByAll(setup.dir)) {
-            String w = "sandbox: the grader cache " + setup.dir + " is not readable by " + sandbox.user()
-                    + " (a parent directory is not world-executable): student code cannot run; use --cache on a readable path";
-            notes.add(w);
-            log.accept(w);
+        this.allAssignments = all.all();
+        this.hiddenTexts = hiddenTexts(setup, all.all());
+        // Every reference image is read before any student code runs.
+        for (Assignment a : selected) {
+            for (Assignment.GradedScene sc : a.scenes()) {
+                Path ref = referenceImage(sc);
+                references.put(sc.reference(), ref == null ? null : Files.readAllBytes(ref));
+            }
         }
 
         Submission read;
@@ -128,14 +145,24 @@ public final class Grader {
         sub.files().keySet().forEach(k -> accepted.add(k + " <- " + sub.sources().get(k)));
         List<String> ignored = new ArrayList<>(sub.ignored());
 
-        Path work = Files.createTempDirectory("raylab-grade");
+        // The boxes live next to the cache (same file system: read-only files can be hard-linked),
+        // in a folder others may cross but not list.
+        Path workParent = options.cacheDir().toAbsolutePath().resolve("work");
+        Files.createDirectories(workParent);
+        // Without a sandbox the child could walk up from its folder: then the system's temporary folder.
+        Path work = sandbox.mode() != Sandbox.Mode.NONE && traversableByAll(workParent)
+                ? Files.createTempDirectory(workParent, "grade")
+                : Files.createTempDirectory("raylab-grade");
+        Sandbox.workFolder(work);
         Map<String, GradeReport.Milestone> results = new LinkedHashMap<>();
-        ExecutorService pool = Executors.newFixedThreadPool(Math.max(1, options.parallel()));
+        // Side by side only when each child has its own namespaces: otherwise one milestone's child
+        // could see another's (its command line in /proc names its box).
+        ExecutorService pool = Executors.newFixedThreadPool(sandbox.mode() == Sandbox.Mode.NAMESPACE
+                ? Math.max(1, options.parallel()) : 1);
         try {
             // The scenes without their reference images: student code cannot copy a reference.
             Path scenesCopy = work.resolve("scenes");
             copyScenes(root.resolve("scenes"), scenesCopy);
-            Sandbox.readableByAll(work);
             Map<String, Future<GradeReport.Milestone>> futures = new LinkedHashMap<>();
             for (Assignment a : selected) {
                 futures.put(a.id(), pool.submit(() -> gradeMilestone(a, sub, setup, work, scenesCopy, sandbox, ignored)));
@@ -150,8 +177,6 @@ public final class Grader {
             }
         } finally {
             pool.shutdownNow();
-            // Milestones run side by side as the same user: processes they left are killed here, at the end.
-            sandbox.killAll();
             GraderSetup.deleteTree(work);
         }
         return new GradeReport(List.copyOf(results.values()), accepted, ignored, notes,
@@ -224,6 +249,13 @@ public final class Grader {
             files.put(f.path().substring("src/main/java/".length()), sub.files().get(f.path()));
         }
         JavaBuild.Result compiled = MilestoneBuild.compileOverlay(files, mdir.resolve("src"), below, overlay);
+        // Children reach their boxes through this folder, but nothing else in it.
+        Sandbox.workFolder(mdir);
+        for (Path p : List.of(mdir.resolve("src"), overlay, otherRefs)) {
+            if (Files.isDirectory(p)) {
+                Sandbox.privateFolder(p);
+            }
+        }
         if (!compiled.success()) {
             StringBuilder msg = new StringBuilder("your code does not compile, so this milestone scores 0:");
             for (JavaBuild.Problem p : compiled.errors().stream().limit(10).toList()) {
@@ -241,38 +273,168 @@ public final class Grader {
                 ignored.add(removed);
             }
         }
-        Sandbox.readableByAll(mdir);
         List<GradeReport.Test> tests = new ArrayList<>();
-        // Tests.
+        // Tests: the visible ones (and visible data cases) in one JVM, the hidden ones in another,
+        // so that nothing the visible JVM prints can hold hidden data.
         List<TestResult> expected = setup.expected.get(a.id());
         Map<String, TestResult> got = new LinkedHashMap<>();
-        if (!expected.isEmpty()) {
-            Path run = mdir.resolve("run");
-            Files.createDirectories(run);
-            sandbox.giveTo(run);
-            // The grader's tests first: nothing the student wrote can replace them.
-            List<Path> cp = new ArrayList<>();
-            cp.add(setup.tests);
-            cp.add(overlay);
-            cp.addAll(below);
-            TestLauncher.Outcome o = TestLauncher.run(cp, setup.tests, List.of(), setup.testClasses.get(a.id()),
-                    options.limits(), run, expected, sandbox.wrapper());
+        List<Path> layers = new ArrayList<>();
+        layers.add(overlay);
+        layers.addAll(below);
+        List<String> classes = setup.testClasses.get(a.id());
+        List<String> visibleClasses = classes.stream().filter(c -> kindOf(a, c) == Kind.VISIBLE
+                || c.equals(DataCases.visibleClassName(a.id()))).toList();
+        List<String> hiddenClasses = classes.stream().filter(c -> !visibleClasses.contains(c)).toList();
+        runTests(a, false, visibleClasses, expected, layers, setup, mdir, sandbox, got, notes);
+        runTests(a, true, hiddenClasses, expected, layers, setup, mdir, sandbox, got, notes);
+        tests.addAll(scoreTests(a, setup, expected, got));
+        // Scenes.
+        tests.addAll(gradeScenes(a, layers, setup, mdir, scenesCopy, sandbox));
+        return new GradeReport.Milestone(a.id(), a.title(), notes.stream().map(this::withheld).toList(),
+                tests.stream().map(this::withheld).toList());
+    }
+
+    private static final String WITHHELD = "(withheld: it contains text of the hidden tests)";
+
+    /** A visible test's message and output, unless they contain text of the hidden tests. */
+    private GradeReport.Test withheld(GradeReport.Test t) {
+        if (!"visible".equals(t.visibility())) {
+            return t;
+        }
+        String m = withheld(t.message());
+        String o = withheld(t.output());
+        if (m.equals(t.message()) && o.equals(t.output())) {
+            return t;
+        }
+        return new GradeReport.Test(t.milestone(), t.name(), t.kind(), t.maxScore(), t.score(), t.passed(), m, o,
+                t.visibility(), t.millis(), t.file(), t.images());
+    }
+
+    private String withheld(String text) {
+        if (text == null || text.isEmpty()) {
+            return text == null ? "" : text;
+        }
+        for (String h : hiddenTexts) {
+            if (text.contains(h)) {
+                return WITHHELD;
+            }
+        }
+        return text;
+    }
+
+    /**
+     * Text of the hidden classes (hidden tests, hidden data cases, hidden helpers) that no visible
+     * class has: their names, and their text constants with a space in them (messages, hints).
+     */
+    private static java.util.Set<String> hiddenTexts(GraderSetup setup, List<Assignment> all) {
+        java.util.Set<String> visibleClasses = new java.util.HashSet<>();
+        for (Assignment a : all) {
+            a.tests().visible().forEach(v -> visibleClasses.add(GraderSetup.testClassName(v)));
+            visibleClasses.add(DataCases.visibleClassName(a.id()));
+        }
+        java.util.Set<String> hiddenClasses = new java.util.HashSet<>();
+        setup.testClasses.values().forEach(l -> l.stream().filter(c -> !visibleClasses.contains(c))
+                .forEach(hiddenClasses::add));
+        java.util.Set<String> hidden = new java.util.HashSet<>();
+        java.util.Set<String> shared = new java.util.HashSet<>();
+        try (Stream<Path> s = Files.walk(setup.tests)) {
+            for (Path p : (Iterable<Path>) s.filter(f -> f.toString().endsWith(".class"))::iterator) {
+                String rel = setup.tests.relativize(p).toString().replace('\\', '/');
+                String outer = GraderSetup.outer(rel.substring(0, rel.length() - 6).replace('/', '.'));
+                boolean isHidden = hiddenClasses.contains(outer)
+                        || (outer.startsWith("raylab.hidden.") && !outer.startsWith("raylab.hidden.RenderMany"));
+                java.util.Set<String> strings = ClassStrings.of(Files.readAllBytes(p));
+                if (isHidden) {
+                    hidden.addAll(strings);
+                    hidden.add(outer);
+                    hidden.add(outer.replace('.', '/'));
+                } else {
+                    shared.addAll(strings);
+                }
+            }
+        } catch (IOException e) {
+            return java.util.Set.of();
+        }
+        java.util.Set<String> out = new java.util.HashSet<>();
+        for (String h : hidden) {
+            boolean name = h.contains("Hidden") || hiddenClasses.contains(h) || hiddenClasses.contains(h.replace('/', '.'));
+            boolean text = h.length() >= 12 && h.indexOf(' ') >= 0 && !h.isBlank();
+            if (!shared.contains(h) && (name || text)) {
+                out.add(h);
+            }
+        }
+        return out;
+    }
+
+    /** Every test class name of every milestone (outer names). */
+    private static java.util.Set<String> allTestClasses(GraderSetup setup) {
+        java.util.Set<String> all = new java.util.HashSet<>();
+        setup.testClasses.values().forEach(all::addAll);
+        return all;
+    }
+
+    /** Libraries a test JVM needs (JUnit and Jackson); a render JVM takes all but Maven's. */
+    private static boolean libraryFor(Path lib, boolean render) {
+        String n = lib.getFileName().toString();
+        if (n.matches("\\d+-(surefire|common-java5).*")) {
+            return false;
+        }
+        return render || n.matches("\\d+-(junit|opentest4j|apiguardian|jackson).*");
+    }
+
+    /** Runs some of M's test classes in one child JVM in its own box; the results go into {@code got}. */
+    private void runTests(Assignment a, boolean hidden, List<String> classes, List<TestResult> allExpected,
+            List<Path> layers, GraderSetup setup, Path mdir, Sandbox sandbox, Map<String, TestResult> got,
+            List<String> notes) throws IOException {
+        java.util.Set<String> mine = new java.util.HashSet<>(classes);
+        List<TestResult> expected = allExpected.stream().filter(e -> mine.contains(GraderSetup.outer(e.className())))
+                .toList();
+        if (expected.isEmpty()) {
+            return;
+        }
+        java.util.Set<String> anyTest = allTestClasses(setup);
+        Path root = options.root().toAbsolutePath();
+        List<Path> cp = new ArrayList<>();
+        cp.add(setup.tests); // the grader's tests first: nothing the student wrote can replace them
+        cp.addAll(layers);
+        Sandbox.Box box = sandbox.box(mdir, cp, (entry, rel) -> {
+            if (setup.libraries.contains(entry)) {
+                return libraryFor(entry, false);
+            }
+            if (!entry.equals(setup.tests) || !rel.endsWith(".class")) {
+                return true;
+            }
+            String outer = GraderSetup.outer(rel.substring(0, rel.length() - 6).replace('/', '.'));
+            if (mine.contains(outer)) {
+                return true;
+            }
+            if (anyTest.contains(outer) || outer.startsWith("raylab.hidden.RenderMany")) {
+                return false; // other milestones' tests; the grader's render helper
+            }
+            // Helpers: the hidden JVM gets all; the visible one only the student-facing ones.
+            return hidden || outer.equals("raylab.cases.CaseCheck")
+                    || Files.isRegularFile(root.resolve("src/test/java/" + outer.replace('.', '/') + ".java"));
+        });
+        try {
+            TestLauncher.Outcome o = TestLauncher.run(box.classPath().stream().map(Path::of).toList(),
+                    Path.of(box.classPath().get(0)), List.of(), classes, options.limits(), box.run(), expected,
+                    box.wrapper());
             for (TestResult r : o.results()) {
                 got.put(r.id(), r);
             }
             if (!o.finished() && !o.problem().isEmpty()) {
-                notes.add("the test run did not finish: " + o.problem());
+                // What went wrong in the hidden run is named on the hidden tests only (their visibility).
+                notes.add(hidden ? "the hidden tests' run did not finish (see the hidden tests)"
+                        : "the test run did not finish: " + o.problem());
             }
+        } finally {
+            sandbox.finish(box, null);
         }
-        tests.addAll(scoreTests(a, setup, expected, got));
-        // Scenes.
-        tests.addAll(gradeScenes(a, overlay, below, setup, mdir, scenesCopy, sandbox));
-        return new GradeReport.Milestone(a.id(), a.title(), notes, tests);
     }
 
     private void copyOtherReferences(Assignment a, GraderSetup setup, Path out) throws IOException {
         Files.createDirectories(out);
-        List<Assignment> all = Assignments.load(options.root().toAbsolutePath()).all();
+        List<Assignment> all = allAssignments;
         List<String> prefixes = new ArrayList<>();
         for (Assignment o : all) {
             if (!o.id().equals(a.id()) && !setup.references.containsKey(o.id())) {
@@ -461,99 +623,129 @@ public final class Grader {
         return invocation == null ? base : "[" + invocation + "] " + base;
     }
 
-    /** Renders the milestone's scenes in one child JVM and compares each with its reference. */
-    private List<GradeReport.Test> gradeScenes(Assignment a, Path overlay, List<Path> below, GraderSetup setup,
-            Path mdir, Path scenesCopy, Sandbox sandbox) throws IOException {
+    /** Renders the milestone's scenes in one child JVM (in its own box) and compares each with its reference. */
+    private List<GradeReport.Test> gradeScenes(Assignment a, List<Path> layers, GraderSetup setup, Path mdir,
+            Path scenesCopy, Sandbox sandbox) throws IOException {
         List<GradeReport.Test> out = new ArrayList<>();
         if (a.scenes().isEmpty()) {
             return out;
         }
         Path root = options.root().toAbsolutePath();
-        Path run = Files.createDirectories(mdir.resolve("render"));
-        sandbox.giveTo(run);
-        List<String> cmd = new ArrayList<>(sandbox.wrapper());
         List<Path> cp = new ArrayList<>();
         cp.add(setup.tests);
-        cp.add(overlay);
-        cp.addAll(below);
+        cp.addAll(layers);
+        Sandbox.Box box = sandbox.box(mdir, cp, (entry, rel) -> {
+            if (setup.libraries.contains(entry)) {
+                return libraryFor(entry, true);
+            }
+            // Of the grader's tests only the render helper: no test data in the render JVM.
+            return !entry.equals(setup.tests) || rel.startsWith("raylab/hidden/RenderMany");
+        });
+        Path scenes = box.run().resolve("scenes");
+        copyScenes(scenesCopy, scenes);
+        List<String> cmd = new ArrayList<>(box.wrapper());
         cmd.addAll(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
-                "-Xmx" + options.sceneHeapMb() + "m", "-Djava.awt.headless=true", "-cp",
-                String.join(java.io.File.pathSeparator, cp.stream().map(Path::toString).toList()),
-                "raylab.hidden.RenderMany"));
+                "-Xmx" + options.sceneHeapMb() + "m", "-Djava.awt.headless=true", "-XX:+DisableAttachMechanism",
+                "-XX:-UsePerfData", "--limit-modules", TestLauncher.CHILD_MODULES, "-cp",
+                String.join(java.io.File.pathSeparator, box.classPath()), "raylab.hidden.RenderMany"));
         List<Path> pngs = new ArrayList<>();
         for (int i = 0; i < a.scenes().size(); i++) {
             Assignment.GradedScene sc = a.scenes().get(i);
-            Path scene = scenesCopy.resolve(root.resolve("scenes").relativize(root.resolve(sc.scene())).toString());
-            Path png = run.resolve("scene" + i + ".png");
-            cmd.add(scene.toString());
-            cmd.add(png.toString());
+            Path scene = scenes.resolve(root.resolve("scenes").relativize(root.resolve(sc.scene())).toString());
+            Path png = box.run().resolve("scene" + i + ".png");
+            cmd.add(box.inChild(scene));
+            cmd.add(box.inChild(png));
             pngs.add(png);
         }
         long t0 = System.nanoTime();
-        ProcessBuilder pb = new ProcessBuilder(cmd).directory(run.toFile())
-                .redirectOutput(ProcessBuilder.Redirect.DISCARD).redirectError(ProcessBuilder.Redirect.DISCARD);
-        pb.environment().keySet().removeIf(k -> k.startsWith("JAVA_TOOL") || k.startsWith("_JAVA_OPTIONS")
-                || k.equals("JDK_JAVA_OPTIONS"));
-        Process p = pb.start();
         Duration limit = options.sceneLimit().multipliedBy(a.scenes().size());
         boolean timedOut = false;
+        List<byte[]> images = new ArrayList<>();
+        List<String> errors = new ArrayList<>();
+        Process p = null;
         try {
-            if (!p.waitFor(limit.toMillis(), java.util.concurrent.TimeUnit.MILLISECONDS)) {
+            ProcessBuilder pb = new ProcessBuilder(cmd).directory(box.run().toFile())
+                    .redirectOutput(ProcessBuilder.Redirect.DISCARD).redirectError(ProcessBuilder.Redirect.DISCARD);
+            p = pb.start();
+            p.getOutputStream().close();
+            try {
+                if (!p.waitFor(limit.toMillis(), java.util.concurrent.TimeUnit.MILLISECONDS)) {
+                    timedOut = true;
+                }
+            } catch (InterruptedException e) {
+                Thread.currentThread().interrupt();
                 timedOut = true;
             }
-        } catch (InterruptedException e) {
-            Thread.currentThread().interrupt();
-            timedOut = true;
-        }
-        p.descendants().forEach(ProcessHandle::destroyForcibly);
-        p.destroyForcibly();
-        try {
-            p.waitFor(5, java.util.concurrent.TimeUnit.SECONDS);
-        } catch (InterruptedException e) {
-            Thread.currentThread().interrupt();
+            p.descendants().forEach(ProcessHandle::destroyForcibly);
+            p.destroyForcibly();
+            try {
+                p.waitFor(5, java.util.concurrent.TimeUnit.SECONDS);
+            } catch (InterruptedException e) {
+                Thread.currentThread().interrupt();
+            }
+            // Read what the child left only once it is gone, capped in size, not following links.
+            for (Path png : pngs) {
+                images.add(readCapped(png, 64L << 20));
+                byte[] err = readCapped(Path.of(png + ".err"), 64 * 1024);
+                errors.add(err == null ? null : GraderSetup.firstLine(new String(err,
+                        java.nio.charset.StandardCharsets.UTF_8)).replaceFirst("^raylab: ", ""));
+            }
+        } finally {
+            sandbox.finish(box, p);
         }
         long ms = (System.nanoTime() - t0) / 1_000_000 / a.scenes().size();
         for (int i = 0; i < a.scenes().size(); i++) {
             Assignment.GradedScene sc = a.scenes().get(i);
             String name = "scene " + Path.of(sc.scene()).getFileName();
-            Path png = pngs.get(i);
-            Path refFile = referenceImage(sc);
-            byte[] refBytes = refFile == null ? null : Files.readAllBytes(refFile);
-            Path err = Path.of(png + ".err");
-            String errLine = Files.isRegularFile(err) ? GraderSetup.firstLine(new String(
-                    Files.readAllBytes(err), java.nio.charset.StandardCharsets.UTF_8)).replaceFirst("^raylab: ", "") : "";
+            byte[] refBytes = references.get(sc.reference());
+            byte[] mine = images.get(i);
+            String errLine = errors.get(i) == null ? "" : errors.get(i);
             String msg;
-            GradeReport.Images images = null;
+            GradeReport.Images shown = null;
             boolean passed = false;
             if (refBytes == null) {
                 msg = "grader setup problem: no reference image " + sc.reference();
-            } else if (!Files.isRegularFile(png) || Files.isRegularFile(err)) {
+            } else if (mine == null || errors.get(i) != null) {
                 msg = !errLine.isEmpty() ? "the render failed: " + errLine
                         : timedOut ? "the renders took longer than " + limit.toSeconds()
                                 + " s and were stopped (an endless loop?)"
                         : "no image was rendered (the render JVM ended early: System.exit, a crash or out of memory)";
-                images = new GradeReport.Images(null, refBytes, null, "");
+                shown = new GradeReport.Images(null, refBytes, null, "");
             } else {
-                byte[] mine = Files.readAllBytes(png);
                 try {
-                    BufferedImage img = PngFiles.read(png);
-                    BufferedImage ref = PngFiles.read(refFile);
+                    BufferedImage img = ImageIO.read(new java.io.ByteArrayInputStream(mine));
+                    BufferedImage ref = ImageIO.read(new java.io.ByteArrayInputStream(refBytes));
+                    if (img == null) {
+                        throw new IOException("not a PNG image");
+                    }
                     ImageCompare.Result c = ImageCompare.compare(img, ref);
                     passed = c.matches(sc.tolerance());
                     String metric = c.summary() + "; allowed: " + String.format(java.util.Locale.ROOT, "%.3f%%",
                             100 * sc.tolerance());
                     msg = passed ? "" : "the image differs from the reference: " + metric
                             + " (open report.html to see where)";
-                    images = new GradeReport.Images(mine, refBytes, png(c.diff()), metric);
+                    shown = new GradeReport.Images(mine, refBytes, png(c.diff()), metric);
                 } catch (IOException | RuntimeException e) {
                     msg = "the rendered image could not be compared: " + e.getMessage();
-                    images = new GradeReport.Images(null, refBytes, null, "");
+                    shown = new GradeReport.Images(null, refBytes, null, "");
                 }
             }
             out.add(new GradeReport.Test(a.id(), name, Kind.SCENE, sc.points(), passed ? sc.points() : 0, passed, msg,
-                    "", "visible", ms, sc.scene(), images));
+                    "", "visible", ms, sc.scene(), shown));
         }
         return out;
+    }
+
+    /** The bytes of a regular file (not a link), or null when there is none or it is larger than {@code cap}. */
+    private static byte[] readCapped(Path f, long cap) {
+        try {
+            if (!Files.isRegularFile(f, java.nio.file.LinkOption.NOFOLLOW_LINKS) || Files.size(f) > cap) {
+                return null;
+            }
+            return Files.readAllBytes(f);
+        } catch (IOException e) {
+            return null;
+        }
     }
 
     /** The reference PNG, rendered with the reference solution (trusted) if it is not there yet. */

@@ -145,7 +145,10 @@ final class GraderSetup {
             }
             List<DataCases.Case> cs = DataCases.load(root, a);
             cases.put(a.id(), cs);
-            if (!cs.isEmpty()) {
+            if (cs.stream().anyMatch(DataCases::visible)) {
+                cls.add(DataCases.visibleClassName(a.id()));
+            }
+            if (cs.stream().anyMatch(c -> !DataCases.visible(c))) {
                 cls.add(DataCases.className(a.id()));
             }
             classesOf.put(a.id(), cls);
@@ -229,11 +232,15 @@ final class GraderSetup {
         // their helpers found on the source path.
         Path gen = tmp.resolve("generated");
         for (Assignment a : milestones) {
-            if (!cases.get(a.id()).isEmpty()) {
-                String cls = DataCases.className(a.id());
+            for (boolean visible : new boolean[] {true, false}) {
+                List<DataCases.Case> part = cases.get(a.id()).stream().filter(c -> DataCases.visible(c) == visible).toList();
+                if (part.isEmpty()) {
+                    continue;
+                }
+                String cls = visible ? DataCases.visibleClassName(a.id()) : DataCases.className(a.id());
                 Path f = gen.resolve(cls.replace('.', '/') + ".java");
                 Files.createDirectories(f.getParent());
-                Files.writeString(f, DataCases.testSource(a.id(), cases.get(a.id())));
+                Files.writeString(f, DataCases.testSource(cls, a.id(), part));
                 testSources.add(f);
             }
         }
@@ -271,7 +278,10 @@ final class GraderSetup {
         }
         JSON.writerWithDefaultPrettyPrinter().writeValue(tmp.resolve("expected.json").toFile(), exp);
         deleteTree(work);
+        // Files readable (children get hard links to them), the folder itself private: only the
+        // grader can reach the cache; children get their own copies or links in their box.
         Sandbox.readableByAll(tmp);
+        Sandbox.privateFolder(tmp);
         try {
             Files.move(tmp, dir, StandardCopyOption.ATOMIC_MOVE);
         } catch (IOException e) {

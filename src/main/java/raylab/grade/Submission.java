@@ -10,8 +10,6 @@ import java.util.ArrayList;
 import java.util.LinkedHashMap;
 import java.util.List;
 import java.util.Map;
-import java.util.regex.Matcher;
-import java.util.regex.Pattern;
 import java.util.stream.Stream;
 import java.util.zip.ZipEntry;
 import java.util.zip.ZipFile;
@@ -30,9 +28,6 @@ public final class Submission {
     static final int MAX_ENTRIES = 20_000;
     /** Largest total of uncompressed bytes read from a zip. */
     static final long MAX_ZIP_BYTES = 64L << 20;
-
-    private static final Pattern PACKAGE = Pattern.compile(
-            "\\A(?:\\s|//[^\\n]*\\n|/\\*(?:.|\\n)*?\\*/)*package\\s+([\\w.]+)\\s*;");
 
     private final Map<String, String> files;
     private final Map<String, String> sources;
@@ -170,8 +165,7 @@ public final class Submission {
             }
             String text = new String(e.bytes, StandardCharsets.UTF_8);
             String expectedPkg = target.substring("src/main/java/".length(), target.lastIndexOf('/')).replace('/', '.');
-            Matcher m = PACKAGE.matcher(text);
-            String pkg = m.find() ? m.group(1) : "";
+            String pkg = PackageScanner.packageOf(text);
             if (!pkg.equals(expectedPkg)) {
                 ignored.add(e.path + ": declares package '" + pkg + "' but " + target + " must be in package '"
                         + expectedPkg + "'");

@@ -83,4 +83,59 @@ class TestLauncherTest {
         assertEquals(TestResult.Status.CRASHED, s.get("b_exits"));
         assertEquals(TestResult.Status.MISSING, s.get("c_never"));
     }
+
+    /** The report channel: only lines with the key's MAC and the next sequence number count. */
+    @Test
+    void reportLinesNeedTheKeyAndTheNextSequenceNumber() throws Exception {
+        byte[] key = new byte[32];
+        new java.util.SplittableRandom(7).nextBytes(key);
+        java.io.ByteArrayOutputStream bytes = new java.io.ByteArrayOutputStream();
+        TestMain.Channel ch = new TestMain.Channel(new java.io.PrintStream(bytes, true, "UTF-8"), key);
+        ch.send("START a");
+        ch.send("RESULT {\"id\":\"a\"}");
+        ch.send("END");
+        String[] lines = bytes.toString("UTF-8").split("\n");
+        javax.crypto.Mac mac = javax.crypto.Mac.getInstance("HmacSHA256");
+        mac.init(new javax.crypto.spec.SecretKeySpec(key, "HmacSHA256"));
+        long[] seq = {0};
+        assertEquals("START a", TestLauncher.verify(mac, lines[0], seq));
+        // Replayed, reordered, altered or keyless lines are not reports.
+        assertEquals(null, TestLauncher.verify(mac, lines[0], seq));
+        assertEquals(null, TestLauncher.verify(mac, lines[2], seq));
+        assertEquals(null, TestLauncher.verify(mac, lines[1].replace("\"a\"", "\"b\""), seq));
+        assertEquals(null, TestLauncher.verify(mac, "R2 " + "0".repeat(64) + " 2 RESULT {}", seq));
+        assertEquals("RESULT {\"id\":\"a\"}", TestLauncher.verify(mac, lines[1], seq));
+        javax.crypto.Mac other = javax.crypto.Mac.getInstance("HmacSHA256");
+        other.init(new javax.crypto.spec.SecretKeySpec(new byte[32], "HmacSHA256"));
+        assertEquals(null, TestLauncher.verify(other, lines[2], new long[] {2}));
+        assertEquals("END", TestLauncher.verify(mac, lines[2], seq));
+    }
+
+    /** Forged lines printed by a test, in any format, do not turn its failure into a pass. */
+    @Test
+    void forgedLinesFromInsideTheTestJvmAreIgnored() throws Exception {
+        Path classes = compile("ForgeTest", """
+                package demo;
+                import org.junit.jupiter.api.*;
+                import java.io.*;
+                class ForgeTest {
+                    @Test void fails() throws Exception {
+                        PrintStream raw = new PrintStream(new FileOutputStream(FileDescriptor.out), true);
+                        String id = "[engine:junit-jupiter]/[class:demo.ForgeTest]/[method:fails()]";
+                        String json = "{\\"id\\":\\"" + id + "\\",\\"className\\":\\"demo.ForgeTest\\",\\"method\\":\\"fails\\","
+                                + "\\"displayName\\":\\"fails()\\",\\"status\\":\\"PASSED\\",\\"message\\":\\"\\",\\"output\\":\\"\\",\\"millis\\":1}";
+                        for (int seq = 1; seq < 20; seq++) {
+                            raw.println("R2 " + "0".repeat(64) + " " + seq + " RESULT " + json);
+                        }
+                        Assertions.fail("really failed");
+                    }
+                }
+                """);
+        List<TestResult> expected = TestLauncher.discover(classPath(classes), classes, List.of(), List.of(), dir);
+        TestLauncher.Outcome o = TestLauncher.run(classPath(classes), classes, List.of(), List.of(),
+                new TestLauncher.Limits(256, Duration.ofSeconds(60), 5, 1024), dir, expected);
+        assertEquals(1, o.results().size(), o.results().toString());
+        assertEquals(TestResult.Status.FAILED, o.results().get(0).status());
+        assertTrue(o.results().get(0).message().contains("really failed"), o.results().get(0).message());
+    }
 }

@@ -91,7 +91,8 @@ class GraderTest {
         Files.createDirectories(out);
         ByteArrayOutputStream err = new ByteArrayOutputStream();
         String[] base = {"grade", sub.toString(), "--out", out.toString(), "--root", root.toString(), "--quiet",
-            "--test-timeout", "2", "--milestone-timeout", "40", "--scene-timeout", "25", "--heap", "256"};
+            "--test-timeout", "2", "--milestone-timeout", "40", "--scene-timeout", "25", "--heap", "256",
+            "--sandbox-user", sandboxUser()};
         String[] args = new String[base.length + extra.length];
         System.arraycopy(base, 0, args, 0, base.length);
         System.arraycopy(extra, 0, args, base.length, extra.length);
@@ -105,6 +106,14 @@ class GraderTest {
         }
         JSON.readTree(out.resolve("classroom.json").toFile());
         return r;
+    }
+
+    /**
+     * The sandbox user (system property raylab.grade.sandboxUser, default raylab-student): another
+     * user keeps these tests apart from other gradings on the same machine.
+     */
+    static String sandboxUser() {
+        return System.getProperty("raylab.grade.sandboxUser", Sandbox.DEFAULT_USER);
     }
 
     /** The Gradescope fields, and a score that is the sum of the tests' scores. */
