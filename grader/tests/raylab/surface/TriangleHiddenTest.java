@@ -249,4 +249,43 @@ class TriangleHiddenTest {
                             + " exactly 0 or a sum of exactly 1 is inside)");
         }
     }
+
+    /**
+     * A ray lying in the triangle's plane, through its interior, and a degenerate triangle (its
+     * three corners on one line; allowed in scenes, never hit): small integers, so d·n, the
+     * determinant of Möller–Trumbore and every edge test are exactly 0 for every correct method.
+     */
+    @Test
+    void raysInThePlaneAndDegenerateTrianglesMiss() {
+        long seed = 0xde9eL;
+        SplittableRandom r = Hidden.rng(seed);
+        for (int i = 0; i < 60; i++) {
+            int ax = r.nextInt(3);
+            int ay = (ax + 1) % 3;
+            int az = (ax + 2) % 3;
+            Vec3 a = new Vec3(r.nextInt(-10, 11), r.nextInt(-10, 11), r.nextInt(-10, 11));
+            Vec3 b = a.plus(axis(ax, r.nextInt(2, 9)));
+            Vec3 c = a.plus(axis(ay, r.nextInt(2, 9)));
+            Triangle tr = new Triangle(a, b, c, M, "triangle");
+            // Through the interior point a + (b − a)/4 + (c − a)/4, along a direction in the plane.
+            Vec3 x = a.plus(b.minus(a).times(0.25)).plus(c.minus(a).times(0.25));
+            // Power-of-two components, so that the ratio of any two is exact too.
+            double[] steps = {0, 1, 2, 4, -1, -2, -4};
+            Vec3 d = axis(ax, Math.scalb(1.0, r.nextInt(0, 3))).plus(axis(ay, steps[r.nextInt(steps.length)]));
+            Ray inPlane = new Ray(x.minus(d.times(r.nextInt(2, 9))), d);
+            IntersectionRecord rec = new IntersectionRecord();
+            assertUntouched("ray in the triangle's plane #" + i + " (seed " + seed + ")", tr, inPlane, rec,
+                    Calls.intersect(tr, rec, inPlane), new IntersectionRecord(),
+                    "d·n = 0: the ray is parallel to the plane (here: in it); no hit");
+            Vec3 e = axis(ax, r.nextInt(1, 5)).plus(axis(ay, r.nextInt(-4, 5)));
+            Triangle flat = r.nextBoolean() ? new Triangle(a, a.plus(e), a.plus(e.times(2)), M, "degenerate")
+                    : new Triangle(a, a, a.plus(e), M, "degenerate");
+            Vec3 onIt = a.plus(e.times(0.5));
+            Ray through = new Ray(onIt.minus(axis(az, r.nextInt(1, 9))), axis(az, 1));
+            IntersectionRecord rec2 = new IntersectionRecord();
+            assertUntouched("degenerate triangle (corners on one line) #" + i + " (seed " + seed + ")", flat, through,
+                    rec2, Calls.intersect(flat, rec2, through), new IntersectionRecord(),
+                    "n = (b − a) × (c − a) = 0: a triangle without area is never hit");
+        }
+    }
 }
