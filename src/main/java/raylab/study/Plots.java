@@ -4,6 +4,7 @@ import java.awt.Color;
 import java.awt.Font;
 import java.io.IOException;
 import java.nio.file.Path;
+import java.util.ArrayList;
 import java.util.List;
 
 import org.knowm.xchart.BitmapEncoder;
@@ -117,6 +118,110 @@ final class Plots {
 
     static void bars(CategoryChart chart, String name, List<String> x, List<? extends Number> y) {
         chart.addSeries(name, x, y);
+    }
+
+    /** One point of a front: a method (at one setting) with its measured cost and its error. */
+    record FrontPoint(Timing.Stats cost, double error) {
+    }
+
+    /** One method on a front: a single point, or a curve over a setting (samples per pixel, triangles). */
+    record Curve(String name, List<FrontPoint> points) {
+    }
+
+    /**
+     * Indices (curve, point) of the non-dominated points: no other point has a cost and an
+     * error both at most as large, one of them smaller. Costs compare by median.
+     */
+    static boolean[][] nonDominated(List<Curve> curves) {
+        boolean[][] front = new boolean[curves.size()][];
+        for (int c = 0; c < curves.size(); c++) {
+            List<FrontPoint> ps = curves.get(c).points();
+            front[c] = new boolean[ps.size()];
+            for (int i = 0; i < ps.size(); i++) {
+                FrontPoint p = ps.get(i);
+                boolean dominated = false;
+                for (Curve other : curves) {
+                    for (FrontPoint q : other.points()) {
+                        double qc = q.cost().median();
+                        double pc = p.cost().median();
+                        if (qc <= pc && q.error() <= p.error() && (qc < pc || q.error() < p.error())) {
+                            dominated = true;
+                        }
+                    }
+                }
+                front[c][i] = !dominated;
+            }
+        }
+        return front;
+    }
+
+    /**
+     * An error-against-cost plot: each method a point or a curve at the median cost, a horizontal
+     * bar from the fastest to the slowest run, and the non-dominated points ringed in black (the
+     * front: nothing else is both cheaper and more accurate). On a logarithmic error axis an
+     * error of 0 is drawn at {@code floor} (the caption says so).
+     */
+    static XYChart front(String title, String xTitle, String yTitle, boolean logX, boolean logY, double floor,
+            List<Curve> curves) {
+        XYChart chart = xy(WIDTH, title, xTitle, yTitle, logX, logY);
+        legendRight(chart);
+        boolean[][] front = nonDominated(curves);
+        List<Double> fx = new ArrayList<>();
+        List<Double> fy = new ArrayList<>();
+        for (int c = 0; c < curves.size(); c++) {
+            Curve curve = curves.get(c);
+            int n = curve.points().size();
+            double[] x = new double[n];
+            double[] y = new double[n];
+            for (int i = 0; i < n; i++) {
+                FrontPoint p = curve.points().get(i);
+                x[i] = p.cost().median();
+                y[i] = logY ? Math.max(p.error(), floor) : p.error();
+                if (front[c][i]) {
+                    fx.add(x[i]);
+                    fy.add(y[i]);
+                }
+            }
+            XYSeries s = line(chart, curve.name(), x, y, c);
+            if (n == 1) {
+                s.setXYSeriesRenderStyle(XYSeries.XYSeriesRenderStyle.Scatter);
+            }
+            Color colour = PALETTE[c % PALETTE.length];
+            for (int i = 0; i < n; i++) {
+                Timing.Stats cost = curve.points().get(i).cost();
+                if (cost.max() > cost.min()) {
+                    XYSeries bar = chart.addSeries(curve.name() + " spread " + i, new double[] {cost.min(), cost.max()},
+                            new double[] {y[i], y[i]});
+                    bar.setLineColor(colour);
+                    bar.setMarker(SeriesMarkers.NONE);
+                    bar.setShowInLegend(false);
+                }
+            }
+        }
+        if (!fx.isEmpty()) {
+            XYSeries f = chart.addSeries("non-dominated (the front)", fx.stream().mapToDouble(Double::doubleValue).toArray(),
+                    fy.stream().mapToDouble(Double::doubleValue).toArray());
+            f.setXYSeriesRenderStyle(XYSeries.XYSeriesRenderStyle.Scatter);
+            f.setMarker(SeriesMarkers.DIAMOND);
+            f.setMarkerColor(Color.BLACK);
+        }
+        chart.getStyler().setMarkerSize(9);
+        return chart;
+    }
+
+    /** The names of the curves with at least one non-dominated point. */
+    static List<String> frontNames(List<Curve> curves) {
+        boolean[][] front = nonDominated(curves);
+        List<String> out = new ArrayList<>();
+        for (int c = 0; c < curves.size(); c++) {
+            for (boolean b : front[c]) {
+                if (b) {
+                    out.add(curves.get(c).name());
+                    break;
+                }
+            }
+        }
+        return out;
     }
 
     /** Writes the chart as DIR/file (a .png name), atomically. */

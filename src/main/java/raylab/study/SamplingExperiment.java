@@ -86,7 +86,7 @@ final class SamplingExperiment implements Experiment {
                 Scene scene = base.withSampler(samplers[s]).withSamplesPerPixel(spps[i]);
                 Image[] last = new Image[1];
                 int runs = study.quick ? 2 : 5;
-                time[s][i] = Timing.seconds(study.quick ? 0 : 1, runs, () -> last[0] = new Renderer(scene).render(1, null));
+                time[s][i] = study.timing.seconds(study.quick ? 0 : 1, runs, () -> last[0] = new Renderer(scene).render(1, null));
                 err[s][i] = rmse(last[0], reference);
             }
         }
