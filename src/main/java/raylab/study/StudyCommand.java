@@ -30,7 +30,7 @@ public final class StudyCommand implements Callable<Integer> {
     @Option(names = "--out", required = true, paramLabel = "DIR", description = "Directory for report.md and the plots.")
     Path out;
 
-    @Option(names = "--quick", description = "A reduced run (under 2 minutes), for CI.")
+    @Option(names = "--quick", description = "A reduced run (under 30 s on 2 cores), for CI.")
     boolean quick;
 
     @Option(names = "--only", paramLabel = "NAME", split = ",",
@@ -41,6 +41,16 @@ public final class StudyCommand implements Callable<Integer> {
     static List<Experiment> experiments() {
         return List.of(new SamplingExperiment(), new SphereExperiment(), new TriangleExperiment(),
                 new ShadowExperiment(), new AccelerationExperiment(), new BoxExperiment());
+    }
+
+    /** The load average of the last 1, 5 and 15 minutes, or "unknown" where /proc/loadavg is missing. */
+    static String loadAverage() {
+        try {
+            String[] f = Files.readString(Path.of("/proc/loadavg")).trim().split("\\s+");
+            return f[0] + ", " + f[1] + ", " + f[2];
+        } catch (java.io.IOException | RuntimeException e) {
+            return "unknown";
+        }
     }
 
     @Override
@@ -67,6 +77,7 @@ public final class StudyCommand implements Callable<Integer> {
         }
         Files.createDirectories(out);
         PrintWriter console = spec.commandLine().getOut();
+        String loadBefore = loadAverage();
         long t0 = System.nanoTime();
         Report report = new Report();
         Study study = new Study(out, quick, report);
@@ -98,7 +109,11 @@ public final class StudyCommand implements Callable<Integer> {
                         + " renders and builds: warm-up runs, then timed runs, median and min–max."
                         + " Error bars in the plots span the fastest to the slowest run. JMH figures for the same"
                         + " loops are in docs/benchmarks.md of the repository; JMH inside the study would take too long.",
-                "**Threads:** 1 for every timing (the figures are per core).");
+                "**Threads:** 1 for every timing (the figures are per core).",
+                "**Load average** (1, 5, 15 min, from /proc/loadavg): " + loadBefore + " at the start, " + loadAverage()
+                        + " at the end.",
+                "**Machine noise:** " + study.timing.noiseSentence(),
+                "**Decision rule** for every conclusion: " + Verdict.RULE);
         Report.writeAtomically(out.resolve("report.md"), report.markdown("What accuracy costs in time", header));
         console.printf("study: wrote %s (%d plots) in %.0f s%n", out.resolve("report.md"), report.plots().size(), wall);
         return 0;

@@ -39,11 +39,25 @@ final class Timing {
     }
 
     /** The runs of one measurement, and their median, quartiles, minimum and maximum. */
-    record Stats(double median, double min, double max, double q1, double q3, double[] values) {
+    record Stats(double median, double min, double max, double q1, double q3, double[] values, double noise) {
         static Stats of(double[] values) {
+            return of(values, 0);
+        }
+
+        /**
+         * The statistics of the runs; noise is the relative spread of the calibration loop timed
+         * in the same turns (0 when there was none, as for operation counts).
+         */
+        static Stats of(double[] values, double noise) {
             double[] s = values.clone();
             Arrays.sort(s);
-            return new Stats(quantile(s, 0.5), s[0], s[s.length - 1], quantile(s, 0.25), quantile(s, 0.75), values.clone());
+            return new Stats(quantile(s, 0.5), s[0], s[s.length - 1], quantile(s, 0.25), quantile(s, 0.75), values.clone(),
+                    noise);
+        }
+
+        /** Whether the machine was too busy while these runs were taken. */
+        boolean noisy() {
+            return noise > NOISY;
         }
 
         /** A single exact figure (an operation count): no spread. */
@@ -60,7 +74,7 @@ final class Timing {
             for (int i = 0; i < v.length; i++) {
                 v[i] *= factor;
             }
-            return of(v);
+            return of(v, noise);
         }
 
         /** IQR / median: the relative spread of the runs. */
@@ -244,6 +258,13 @@ final class Timing {
      * them alike.
      */
     Stats[] nanosPerOpInterleaved(Work[] works, long opsPerRep) {
+        long[] ops = new long[works.length];
+        Arrays.fill(ops, opsPerRep);
+        return nanosPerOpInterleaved(works, ops);
+    }
+
+    /** As {@link #nanosPerOpInterleaved(Work[], long)}, with each method's own operations per repetition. */
+    Stats[] nanosPerOpInterleaved(Work[] works, long[] opsPerRep) {
         int n = works.length;
         Work[] all = Arrays.copyOf(works, n + 1);
         all[n] = Timing::calibration;
@@ -262,13 +283,14 @@ final class Timing {
             for (int m = 0; m <= n; m++) {
                 long t0 = System.nanoTime();
                 sink += all[m].run(reps[m]);
-                ns[m][i] = (double) (System.nanoTime() - t0) / ((double) reps[m] * (m < n ? opsPerRep : 1));
+                ns[m][i] = (double) (System.nanoTime() - t0) / ((double) reps[m] * (m < n ? opsPerRep[m] : 1));
             }
         }
-        noise.add(Stats.of(ns[n]).relativeSpread());
+        double spread = Stats.of(ns[n]).relativeSpread();
+        noise.add(spread);
         Stats[] out = new Stats[n];
         for (int m = 0; m < n; m++) {
-            out[m] = Stats.of(ns[m]);
+            out[m] = Stats.of(ns[m], spread);
         }
         return out;
     }
@@ -297,12 +319,13 @@ final class Timing {
             sink += calibration(calReps);
             cal[i] = System.nanoTime() - t0;
         }
+        double spread = Stats.of(cal).relativeSpread();
         if (runs >= 3) {
-            noise.add(Stats.of(cal).relativeSpread());
+            noise.add(spread);
         }
         Stats[] out = new Stats[n];
         for (int m = 0; m < n; m++) {
-            out[m] = Stats.of(s[m]);
+            out[m] = Stats.of(s[m], spread);
         }
         return out;
     }

@@ -14,7 +14,8 @@ final class Verdict {
     /** The decision rule, as printed in the report. */
     static final String RULE = "Among the methods whose error is within the tolerance the task needs, recommend the"
             + " cheapest, provided the bootstrap 95% interval of its cost ratio to the next cheapest lies wholly below 1."
-            + " If that interval includes 1, the verdict is \"too close to call on this machine\". If only one method is"
+            + " If that interval includes 1, or the calibration loop timed alongside varied by more than 10% (the machine"
+            + " was too busy), the verdict is \"too close to call on this machine\". If only one method is"
             + " within the tolerance, recommend it whatever it costs. If none is, recommend none and name the most"
             + " accurate.";
 
@@ -77,7 +78,18 @@ final class Verdict {
         Option first = within.get(0);
         Option second = within.get(1);
         Timing.Ratio r = Timing.ratio(first.cost(), second.cost());
-        return new Verdict(r.below1() ? Kind.CHEAPEST : Kind.TOO_CLOSE, first, second, tolerance, options);
+        boolean busy = first.cost().noisy() || second.cost().noisy();
+        return new Verdict(r.below1() && !busy ? Kind.CHEAPEST : Kind.TOO_CLOSE, first, second, tolerance, options);
+    }
+
+    /** Whether the machine was too busy while the compared costs were measured. */
+    boolean busy() {
+        return other != null && (winner.cost().noisy() || other.cost().noisy());
+    }
+
+    private String busyText() {
+        return String.format(", but the machine was too busy to tell (the calibration loop varied by %.0f%%)",
+                100 * Math.max(winner.cost().noise(), other.cost().noise()));
     }
 
     /** The recommended method's name, or null when there is none (TOO_CLOSE, NONE_ACCURATE). */
@@ -116,7 +128,8 @@ final class Verdict {
                 sb.append('.');
                 if (other != null) {
                     sb.append(" Its ").append(costName).append(" is ").append(ratio.format()).append(" that of ")
-                            .append(other.name()).append(ratio.above1() ? ", the price of being right"
+                            .append(other.name()).append(busy() ? busyText()
+                                    : ratio.above1() ? ", the price of being right"
                                     : ratio.below1() ? ": it is also cheaper" : ", not distinguishable on this machine")
                             .append('.');
                 }
@@ -131,7 +144,7 @@ final class Verdict {
                 sb.append(winner.name()).append(" and ").append(other.name()).append(" are both within the tolerance (")
                         .append(toleranceText).append("), and ").append(winner.name()).append("'s ").append(costName)
                         .append(" is ").append(ratio.format()).append(" that of ").append(other.name())
-                        .append(": the interval includes 1, so the measurement cannot tell them apart.");
+                        .append(busy() ? busyText() + "." : ": the interval includes 1, so the measurement cannot tell them apart.");
                 break;
             default:
                 sb.append("No method is within the tolerance (").append(toleranceText).append("); the most accurate is ")
