@@ -175,7 +175,7 @@ final class AccelerationExperiment implements Experiment {
             bp.add(new Plots.FrontPoint(bvh[i], mismatch[i]));
         }
         XYChart front = Plots.front("Acceleration: error against time per ray (each point one triangle count)",
-                "time per ray (ns, log; bar: min–max)", "rays whose closest hit differs from the linear group's (%)",
+                "time per ray (ns, log; bar: quartiles)", "rays whose closest hit differs from the linear group's (%)",
                 true, false, 0, List.of(new Plots.Curve("linear group", lp), new Plots.Curve("BVH (SAH, 12 bins)", bp)));
         Plots.save(front, study.out, "bvh-front.png");
 
@@ -202,7 +202,7 @@ final class AccelerationExperiment implements Experiment {
 
         Report r = study.report;
         r.section("A linear group against the bounding volume hierarchy");
-        r.plot("bvh-front.png", "error against time per ray, one point per triangle count; black diamonds: the front");
+        r.plot("bvh-front.png", "error against time per ray, one point per triangle count; dashed: the front");
         r.paragraph(String.format("n random triangles (seeded) in the unit cube, each about 1/∛n across; closest-hit rays"
                 + " from a sphere around the cube toward random points inside it. Both structures must give the same"
                 + " closest hit: the error axis of the front is the share of rays whose closest t differs from the"

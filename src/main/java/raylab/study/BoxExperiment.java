@@ -128,7 +128,7 @@ final class BoxExperiment implements Experiment {
             worst[m] = TriangleExperiment.max(wrong[m]);
             curves.add(new Plots.Curve(METHODS[m], List.of(new Plots.FrontPoint(cost[m], worst[m]))));
         }
-        Plots.save(Plots.front("Box: wrong answers against cost", "ns per ray–box test (median; bar: min–max)",
+        Plots.save(Plots.front("Box: wrong answers against cost", "ns per ray–box test (median; bar: quartiles)",
                 "wrong hit/miss (% of rays, worst kind)", false, true, 1e-3, curves), study.out, "box-front.png");
 
         CategoryChart chart = Plots.bars("Box: wrong hit/miss answers", "rays", "wrong hit/miss (% of rays)");
@@ -143,7 +143,7 @@ final class BoxExperiment implements Experiment {
 
         Report rep = study.report;
         rep.section("Another knob: the box's slab test");
-        rep.plot("box-front.png", "wrong answers against cost per test; 0 is drawn at 10⁻³ %; black diamond: the front");
+        rep.plot("box-front.png", "wrong answers against cost per test; 0 is drawn at 10⁻³ %; dashed: the front");
         rep.paragraph(String.format("The box [−1, 1]³; %,d rays of each kind: in general position (from 4 units away toward"
                 + " points up to 1.2 from the centre), in the plane of a face (travelling along one axis, with one other"
                 + " coordinate exactly on a face's plane and a zero direction component there), and along an edge (two"

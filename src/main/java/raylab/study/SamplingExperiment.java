@@ -133,7 +133,7 @@ final class SamplingExperiment implements Experiment {
             }
             curves.add(new Plots.Curve(names[s], pts));
         }
-        XYChart front = Plots.front("Sampling: error against render time", "render time (s), 1 thread",
+        XYChart front = Plots.front("Sampling: error against render time", "render time (s), 1 thread (median; bar: quartiles)",
                 "RMSE (linear radiance)", true, true, 1e-6, curves);
         Plots.guide(front, "one 8-bit step (1/255)", new double[] {time[0][0].min(), time[1][spps.length - 1].max()},
                 new double[] {TOLERANCE, TOLERANCE});
@@ -163,7 +163,7 @@ final class SamplingExperiment implements Experiment {
 
         Report r = study.report;
         r.section("Samples per pixel: random against stratified");
-        r.plot("sampling-front.png", "RMSE against render time; black diamonds: the front");
+        r.plot("sampling-front.png", "RMSE against render time; dashed: the front");
         r.paragraph(String.format("A %d×%d image with edges everywhere (a sphere's silhouette and highlight, a box, a hard"
                 + " shadow on a floor), rendered with 1 to %d samples per pixel, each sampler. Error: RMSE over all"
                 + " pixels and channels, in linear radiance, against a %d-sample stratified reference of the same"

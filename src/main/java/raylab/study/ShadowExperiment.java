@@ -318,7 +318,7 @@ final class ShadowExperiment implements Experiment {
             worst[m] = Math.max(TriangleExperiment.max(acne[m]), TriangleExperiment.max(leaks[m]));
             curves.add(new Plots.Curve(METHODS[m], List.of(new Plots.FrontPoint(cost[m], worst[m]))));
         }
-        Plots.save(Plots.front("Shadow rays: wrong answers against cost", "ns per shadow test (median; bar: min–max)",
+        Plots.save(Plots.front("Shadow rays: wrong answers against cost", "ns per shadow test (median; bar: quartiles)",
                 "worst acne or leak rate over the settings (%)", false, true, 1e-2, curves), study.out, "shadow-front.png");
 
         // Acne and leaks against scale: the worst over the translations (and, at scale 1, the far object).
@@ -353,7 +353,7 @@ final class ShadowExperiment implements Experiment {
 
         Report r = study.report;
         r.section("Shadow-ray offsets: fixed, scene-global and local");
-        r.plot("shadow-front.png", "worst acne or leak rate against cost per shadow test; 0 is drawn at 10⁻² %; black diamond: the front");
+        r.plot("shadow-front.png", "worst acne or leak rate against cost per shadow test; 0 is drawn at 10⁻² %; dashed: the front");
         r.paragraph(String.format("The scene has a fine detail next to large things: a 20 × 20 ground of two triangles through"
                 + " the coordinate origin, a sphere of radius 2, a 4 × 4 leaf %.3f above the ground and a light 30 above."
                 + " It is rotated at random (seeded), scaled by s and moved by T; one setting adds a sphere of radius 1"

@@ -135,7 +135,7 @@ final class SphereExperiment implements Experiment {
         for (int m = 0; m < 2; m++) {
             curves.add(new Plots.Curve(METHODS[m], List.of(new Plots.FrontPoint(cost[m], overall[m]))));
         }
-        Plots.save(Plots.front("Sphere: wrong answers against cost", "ns per ray–sphere test (median; bar: min–max)",
+        Plots.save(Plots.front("Sphere: wrong answers against cost", "ns per ray–sphere test (median; bar: quartiles)",
                 "wrong hit/miss (% of all rays, 10^0.5 to 10^9 radii)", false, true, 1e-3, curves),
                 study.out, "sphere-front.png");
 
@@ -156,7 +156,7 @@ final class SphereExperiment implements Experiment {
 
         Report r = study.report;
         r.section("Sphere: textbook against stable quadratic");
-        r.plot("sphere-front.png", "wrong answers against cost per test; 0 is drawn at 10⁻³ %; black diamond: the front");
+        r.plot("sphere-front.png", "wrong answers against cost per test; 0 is drawn at 10⁻³ %; dashed: the front");
         r.paragraph(String.format("A unit sphere at distance D (10^0.5 to 10⁹ radii) from ray origins near the coordinate origin;"
                 + " %,d unit-length rays per distance aimed at points up to 1.2 radii from the centre (about"
                 + " 70%% hit). The exact answer comes from the 80-digit oracle (raylab.numerics.Oracle): exact"

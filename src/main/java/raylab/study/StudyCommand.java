@@ -21,8 +21,9 @@ import raylab.cli.UserError;
  */
 @Command(name = "study", mixinStandardHelpOptions = true,
         description = {"Measure what accuracy costs in time (instructors).",
-            "Sampling, sphere and triangle methods, shadow-ray offsets, BVH against a linear group, box slabs. Writes DIR/report.md and",
-            "PNG plots, conclusions first, stamped with machine, JVM and date."})
+            "Sampling, sphere and triangle methods, shadow-ray offsets, BVH against a linear group, box slabs, what the render",
+            "plan saves. Writes DIR/report.md and PNG plots: an error-against-cost front per section, conclusions first,",
+            "each from a stated decision rule, stamped with machine, JVM, date, load average and the measured noise."})
 public final class StudyCommand implements Callable<Integer> {
     @Spec
     CommandSpec spec;
@@ -34,13 +35,13 @@ public final class StudyCommand implements Callable<Integer> {
     boolean quick;
 
     @Option(names = "--only", paramLabel = "NAME", split = ",",
-            description = "Run only these experiments: sampling, sphere, triangle, shadows, bvh, box.")
+            description = "Run only these experiments: sampling, sphere, triangle, shadows, bvh, box, plan.")
     List<String> only;
 
     /** Every experiment, in report order. */
     static List<Experiment> experiments() {
         return List.of(new SamplingExperiment(), new SphereExperiment(), new TriangleExperiment(),
-                new ShadowExperiment(), new AccelerationExperiment(), new BoxExperiment());
+                new ShadowExperiment(), new AccelerationExperiment(), new BoxExperiment(), new PlanExperiment());
     }
 
     /** The load average of the last 1, 5 and 15 minutes, or "unknown" where /proc/loadavg is missing. */

@@ -185,7 +185,7 @@ final class TriangleExperiment implements Experiment {
             worst[m] = max(perMillion[m]);
             curves.add(new Plots.Curve(SHORT[m], List.of(new Plots.FrontPoint(cost[m], worst[m]))));
         }
-        Plots.save(Plots.front("Triangle: cracks against cost", "ns per ray–triangle test (median; bar: min–max)",
+        Plots.save(Plots.front("Triangle: cracks against cost", "ns per ray–triangle test (median; bar: quartiles)",
                 "rays through shared edges/vertices hitting nothing (per 10⁶, worst kind)", false, true, 0.1, curves),
                 study.out, "triangle-front.png");
 
@@ -202,7 +202,7 @@ final class TriangleExperiment implements Experiment {
 
         Report rep = study.report;
         rep.section("Triangle: lecture against Möller–Trumbore against watertight");
-        rep.plot("triangle-front.png", "cracks against cost per test; 0 is drawn at 0.1 per million; black diamonds: the front");
+        rep.plot("triangle-front.png", "cracks against cost per test; 0 is drawn at 0.1 per million; dashed: the front");
         rep.paragraph(String.format("Edge rays: two triangles share the edge b–c (random, in one plane up to rounding, about 1 unit across), and the ray"
                 + " passes from a random origin 2 to 5 units away through the point b + s(c − b), s uniform in [0, 1]."
                 + " Vertex rays: a flat fan of 6 triangles around v, ray through v. Rays within about 6° of the plane are not used. In exact arithmetic every such ray hits at"

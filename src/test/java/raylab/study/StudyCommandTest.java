@@ -27,7 +27,8 @@ class StudyCommandTest {
             "triangle-front.png", "triangle-cracks.png",
             "shadow-front.png", "shadow-acne.png", "shadow-leaks.png",
             "bvh-front.png", "bvh-time-per-ray.png", "bvh-tests-per-ray.png", "bvh-build-time.png",
-            "box-front.png", "box-wrong.png");
+            "box-front.png", "box-wrong.png",
+            "plan-front.png");
 
     static int run(StringWriter out, StringWriter err, String... args) {
         return Main.run(new PrintWriter(out, true), new PrintWriter(err, true), args);
