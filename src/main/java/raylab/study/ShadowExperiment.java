@@ -30,7 +30,7 @@ import raylab.surface.Triangle;
  */
 final class ShadowExperiment implements Experiment {
     static final String[] METHODS = {"no offset", "fixed ε = 10⁻⁹", "fixed ε = 10⁻⁶", "fixed ε = 10⁻³",
-        "offset ∝ |x| only", "scene-global offset", "local offset (reference)"};
+        "offset ∝ ‖x‖ only", "scene-global offset", "local offset (reference)"};
     static final int GLOBAL = 5;
     static final int LOCAL = 6;
     static final Lambertian GREY = new Lambertian(new Color(0.7, 0.7, 0.7), Color.BLACK, "grey");

@@ -13,9 +13,11 @@ import java.util.function.DoubleFunction;
 final class Verdict {
     /** The decision rule, as printed in the report. */
     static final String RULE = "Among the methods whose error is within the tolerance the task needs, recommend the"
-            + " cheapest, provided the bootstrap 95% interval of its cost ratio to the next cheapest lies wholly below 1."
-            + " If that interval includes 1, or the calibration loop timed alongside varied by more than 10% (the machine"
-            + " was too busy), the verdict is \"too close to call on this machine\". If only one method is"
+            + " cheapest, provided the bootstrap 95% interval of its cost ratio to the next cheapest lies wholly below"
+            + " 1/(1 + noise), where noise is the relative spread (interquartile range over median) of a calibration loop"
+            + " timed in the same turns: on a quiet machine the interval must exclude 1, on a busy one the difference must"
+            + " also exceed the machine's own variation. Otherwise the verdict is \"too close to call on this machine\"."
+            + " If only one method is"
             + " within the tolerance, recommend it whatever it costs. If none is, recommend none and name the most"
             + " accurate.";
 
@@ -78,18 +80,22 @@ final class Verdict {
         Option first = within.get(0);
         Option second = within.get(1);
         Timing.Ratio r = Timing.ratio(first.cost(), second.cost());
-        boolean busy = first.cost().noisy() || second.cost().noisy();
-        return new Verdict(r.below1() && !busy ? Kind.CHEAPEST : Kind.TOO_CLOSE, first, second, tolerance, options);
+        double noise = Math.max(first.cost().noise(), second.cost().noise());
+        return new Verdict(r.hi() < 1 / (1 + noise) ? Kind.CHEAPEST : Kind.TOO_CLOSE, first, second, tolerance, options);
+    }
+
+    /** The calibration spread while the compared costs were measured (0 without a comparison). */
+    double noise() {
+        return other == null ? 0 : Math.max(winner.cost().noise(), other.cost().noise());
     }
 
     /** Whether the machine was too busy while the compared costs were measured. */
     boolean busy() {
-        return other != null && (winner.cost().noisy() || other.cost().noisy());
+        return noise() > Timing.NOISY;
     }
 
     private String busyText() {
-        return String.format(", but the machine was too busy to tell (the calibration loop varied by %.0f%%)",
-                100 * Math.max(winner.cost().noise(), other.cost().noise()));
+        return String.format(", within the machine's own variation (the calibration loop varied by %.0f%%)", 100 * noise());
     }
 
     /** The recommended method's name, or null when there is none (TOO_CLOSE, NONE_ACCURATE). */
@@ -128,9 +134,9 @@ final class Verdict {
                 sb.append('.');
                 if (other != null) {
                     sb.append(" Its ").append(costName).append(" is ").append(ratio.format()).append(" that of ")
-                            .append(other.name()).append(busy() ? busyText()
-                                    : ratio.above1() ? ", the price of being right"
-                                    : ratio.below1() ? ": it is also cheaper" : ", not distinguishable on this machine")
+                            .append(other.name()).append(ratio.lo() > 1 + noise() ? ", the price of being right"
+                                    : ratio.hi() < 1 / (1 + noise()) ? ": it is also cheaper"
+                                    : busy() ? busyText() : ", not distinguishable on this machine")
                             .append('.');
                 }
                 break;
@@ -138,13 +144,14 @@ final class Verdict {
                 sb.append(winner.name()).append(" and ").append(other.name()).append(" are both within the tolerance (")
                         .append(toleranceText).append("), and ").append(winner.name()).append("'s ").append(costName)
                         .append(" is ").append(ratio.format()).append(" that of ").append(other.name())
-                        .append(", an interval wholly below 1.");
+                        .append(noise() > 0 ? String.format(", an interval wholly below 1/(1 + %.2f)", noise()) : ", wholly below 1")
+                        .append('.');
                 break;
             case TOO_CLOSE:
                 sb.append(winner.name()).append(" and ").append(other.name()).append(" are both within the tolerance (")
                         .append(toleranceText).append("), and ").append(winner.name()).append("'s ").append(costName)
                         .append(" is ").append(ratio.format()).append(" that of ").append(other.name())
-                        .append(busy() ? busyText() + "." : ": the interval includes 1, so the measurement cannot tell them apart.");
+                        .append(busy() ? busyText() + "." : ": the interval reaches 1, so the measurement cannot tell them apart.");
                 break;
             default:
                 sb.append("No method is within the tolerance (").append(toleranceText).append("); the most accurate is ")
