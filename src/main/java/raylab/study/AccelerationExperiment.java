@@ -174,8 +174,8 @@ final class AccelerationExperiment implements Experiment {
             lp.add(new Plots.FrontPoint(linear[i], mismatch[i]));
             bp.add(new Plots.FrontPoint(bvh[i], mismatch[i]));
         }
-        XYChart front = Plots.front("Acceleration: error against time per ray (each point one triangle count)",
-                "time per ray (ns, log; bar: quartiles)", "rays whose closest hit differs from the linear group's (%)",
+        XYChart front = Plots.front("Acceleration: error against time per ray",
+                "time per ray (ns, log; bar: quartiles), one point per triangle count", "wrong closest hits (% of rays)",
                 true, false, 0, List.of(new Plots.Curve("linear group", lp), new Plots.Curve("BVH (SAH, 12 bins)", bp)));
         Plots.save(front, study.out, "bvh-front.png");
 
@@ -202,7 +202,8 @@ final class AccelerationExperiment implements Experiment {
 
         Report r = study.report;
         r.section("A linear group against the bounding volume hierarchy");
-        r.plot("bvh-front.png", "error against time per ray, one point per triangle count; dashed: the front");
+        r.plot("bvh-front.png", "error against time per ray, one point per triangle count: both structures give the linear"
+                + " group's closest hit on every ray checked, so the front is decided by time alone");
         r.paragraph(String.format("n random triangles (seeded) in the unit cube, each about 1/∛n across; closest-hit rays"
                 + " from a sphere around the cube toward random points inside it. Both structures must give the same"
                 + " closest hit: the error axis of the front is the share of rays whose closest t differs from the"

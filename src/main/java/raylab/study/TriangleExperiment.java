@@ -186,7 +186,7 @@ final class TriangleExperiment implements Experiment {
             curves.add(new Plots.Curve(SHORT[m], List.of(new Plots.FrontPoint(cost[m], worst[m]))));
         }
         Plots.save(Plots.front("Triangle: cracks against cost", "ns per ray–triangle test (median; bar: quartiles)",
-                "rays through shared edges/vertices hitting nothing (per 10⁶, worst kind)", false, true, 0.1, curves),
+                "cracks: misses per 10⁶ rays (worst kind)", false, true, 0.1, curves),
                 study.out, "triangle-front.png");
 
         CategoryChart chart = Plots.bars("Triangle: rays through shared edges and vertices that hit nothing",
