@@ -107,10 +107,12 @@ public final class StudyCommand implements Callable<Integer> {
                 "**Machine:** " + machine.oneLine(),
                 "**Run:** `raylab study" + (quick ? " --quick" : "") + (only == null ? "" : " --only " + String.join(",", only))
                         + "`, " + String.format("%.0f s", wall) + " wall time, finished " + Instant.now().toString().replaceAll("\\.\\d+Z$", "Z"),
-                "**Timing:** in-process, " + study.timing.describe() + " (per-intersection figures);"
-                        + " renders and builds: warm-up runs, then timed runs, median and min–max."
-                        + " Error bars in the plots span the fastest to the slowest run. JMH figures for the same"
-                        + " loops are in docs/benchmarks.md of the repository; JMH inside the study would take too long.",
+                "**Timing:** in-process, " + study.timing.describe() + " (per-intersection figures); renders and"
+                        + " builds: a warm-up round, then timed rounds of every competitor and a calibration loop of"
+                        + " about the same length. Tables give the median and the fastest–slowest run; the bars of the"
+                        + " front plots span the middle half of the runs (quartiles). Every reported figure carries"
+                        + " this machine, JVM, date and load average. JMH figures for the same loops are in"
+                        + " docs/benchmarks.md of the repository; JMH inside the study would take too long.",
                 "**Threads:** 1 for every timing (the figures are per core).",
                 "**Load average** (1, 5, 15 min, from /proc/loadavg): " + loadBefore + " at the start, " + loadAverage()
                         + " at the end.",

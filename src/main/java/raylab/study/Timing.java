@@ -280,7 +280,10 @@ final class Timing {
         }
         double[][] ns = new double[n + 1][runs];
         for (int i = 0; i < runs; i++) {
-            for (int m = 0; m <= n; m++) {
+            // The order rotates from run to run, so that no method always comes first (right after
+            // the previous run used up its share of the processor) or last.
+            for (int k = 0; k <= n; k++) {
+                int m = (k + i) % (n + 1);
                 long t0 = System.nanoTime();
                 sink += all[m].run(reps[m]);
                 ns[m][i] = (double) (System.nanoTime() - t0) / ((double) reps[m] * (m < n ? opsPerRep[m] : 1));
@@ -308,16 +311,32 @@ final class Timing {
         }
         double[][] s = new double[n][runs];
         double[] cal = new double[runs];
-        int calReps = Math.max(1, calibrate(Timing::calibration) / 4);
+        // The calibration loop lasts about as long as one task, so that it sees the same kind of
+        // interruptions (a task of 20 ms is preempted far more often than a loop of 1 ms).
+        int perRun = calibrate(Timing::calibration);
+        int calReps = -1;
         for (int i = 0; i < runs; i++) {
-            for (int m = 0; m < n; m++) {
-                long t0 = System.nanoTime();
-                tasks[m].run();
-                s[m][i] = (System.nanoTime() - t0) / 1e9;
+            // Rotating order, as in nanosPerOpInterleaved; the calibration loop is slot n.
+            for (int k = 0; k <= n; k++) {
+                int m = (k + i) % (n + 1);
+                if (m < n) {
+                    long t0 = System.nanoTime();
+                    tasks[m].run();
+                    s[m][i] = (System.nanoTime() - t0) / 1e9;
+                } else {
+                    if (calReps < 0) {
+                        // First round: the calibration slot comes last, after every task's first run.
+                        double mean = 0;
+                        for (int j = 0; j < n; j++) {
+                            mean += s[j][0] / n;
+                        }
+                        calReps = (int) Math.max(1, Math.min(1L << 24, Math.round(perRun * mean / runSeconds)));
+                    }
+                    long t0 = System.nanoTime();
+                    sink += calibration(calReps);
+                    cal[i] = System.nanoTime() - t0;
+                }
             }
-            long t0 = System.nanoTime();
-            sink += calibration(calReps);
-            cal[i] = System.nanoTime() - t0;
         }
         double spread = Stats.of(cal).relativeSpread();
         if (runs >= 3) {
