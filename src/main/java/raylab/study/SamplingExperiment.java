@@ -191,11 +191,16 @@ final class SamplingExperiment implements Experiment {
                 perSample.format(), spps[last], formatSpp(sppMatch), referenceSpp));
 
         Verdict v = decide(names, err, time);
-        r.conclude(String.format("**Sampling: %s.** %s The error drops below one 8-bit step at about %s spp stratified,"
-                + " %s spp random; past that mark, more samples change little that an 8-bit image can show.",
+        r.conclude(String.format("**Sampling: %s.** %s The error drops below one 8-bit step with stratified sampling at %s,"
+                + " with random sampling at %s; past that mark, more samples change little that an 8-bit image can show.",
                 v.headline(), v.reason("smallest RMSE", d -> String.format("%.4f", d), "RMSE ≤ 1/255, one 8-bit step",
                         "render time at the first spp within it"),
-                formatSpp(stratStep), formatSpp(randomStep)));
+                sppText(stratStep, spps[last]), sppText(randomStep, spps[last])));
+    }
+
+    /** "about 26 spp", or "more than 64 spp (not reached in this run)". */
+    static String sppText(double spp, int largest) {
+        return Double.isNaN(spp) ? "more than " + largest + " spp (not reached in this run)" : String.format("about %.0f spp", spp);
     }
 
     static String formatSpp(double spp) {

@@ -158,6 +158,6 @@ final class Verdict {
                         .append(winner.name()).append(" (").append(errorName).append(' ')
                         .append(error.apply(winner.error())).append(").");
         }
-        return sb.toString();
+        return Character.toUpperCase(sb.charAt(0)) + sb.substring(1);
     }
 }
