@@ -73,4 +73,47 @@ public final class Numerics {
         double offset = originOffset(x, sceneMagnitude);
         return n.dot(w) >= 0 ? x.plus(n.times(offset)) : x.minus(n.times(offset));
     }
+
+    // ---- Local offsets: a bound on the error of each computed hit point (pbrt-v4 style) ----
+
+    /** Rounding steps the bound of {@link #pointError} allows for (see docs/numerics.md). */
+    public static final int POINT_ERROR_STEPS = 8;
+
+    /**
+     * How many times its error bound a ray origin is moved off the surface by
+     * {@link #offsetRayOrigin(Vec3, double, Vec3, Vec3)}: the point's own error, the error with
+     * which the next ray's intersection code locates the same surface (about as large again), and
+     * room for the componentwise bound to become a distance (√3). 16·γ(8) ≈ 2^-46.
+     */
+    public static final double OFFSET_SAFETY = 16;
+
+    /**
+     * A bound on the rounding error of each coordinate of a computed hit point x, in the style of
+     * pbrt-v4's per-hit error bounds: γ(8)·max(max|x_i|, magnitude), where magnitude bounds the
+     * coordinates of the surface x was computed on ({@link #magnitude} of that one surface's
+     * box, not of the scene). A hit point is a short sum of products of those coordinates
+     * (sphere: c + r·n̂; triangle: b0·a + b1·b + b2·c with b0 + b1 + b2 = 1 up to rounding; box:
+     * exact on the face plane), so each of its coordinates is off by at most a few rounding
+     * steps of the largest coordinate involved: of x itself, or of the surface when x is small
+     * on a large surface (near the middle of a huge ground triangle).
+     */
+    public static double pointError(Vec3 x, double magnitude) {
+        return gamma(POINT_ERROR_STEPS) * Math.max(x.maxAbs(), magnitude);
+    }
+
+    /** The distance a ray origin is moved off a surface for a point error bound: OFFSET_SAFETY·error, at least MIN_OFFSET. */
+    public static double offsetFor(double error) {
+        return Math.max(MIN_OFFSET, OFFSET_SAFETY * error);
+    }
+
+    /**
+     * pbrt-v4's OffsetRayOrigin with a per-hit bound: moves x (whose coordinates are off by at
+     * most {@code error}) off the surface with unit normal n, to the side w points into, by
+     * {@link #offsetFor}(error). Nothing but the point and its own bound decides the offset, so a
+     * far-away object elsewhere in the scene does not change it.
+     */
+    public static Vec3 offsetRayOrigin(Vec3 x, double error, Vec3 n, Vec3 w) {
+        double offset = offsetFor(error);
+        return n.dot(w) >= 0 ? x.plus(n.times(offset)) : x.minus(n.times(offset));
+    }
 }

@@ -57,8 +57,25 @@ public final class ShadowOffsets {
         return scene.intersectsAny(shadowRay, scratch);
     }
 
-    /** The reference, {@link Shadows#isShadowed}: an offset proportional to the larger of the
-     *  magnitude of x and of the scene ({@link Numerics#offsetRayOrigin(Vec3, Vec3, Vec3, double)}). */
+    /**
+     * The scene-global offset (the reference before the local one): 2^-46 times the larger of
+     * max|x_i| and the scene's magnitude ({@link Numerics#offsetRayOrigin(Vec3, Vec3, Vec3, double)}).
+     * Right at every scale and translation, but one object far away makes the offset large
+     * everywhere: a leaf just above the ground then leaks light.
+     */
+    public static boolean sceneGlobal(Surface scene, Vec3 x, Vec3 n, PointLight light,
+            IntersectionRecord scratch) {
+        double magnitude = Numerics.magnitude(scene.boundingBox());
+        Vec3 origin = Numerics.offsetRayOrigin(x, n, light.position.minus(x), magnitude);
+        Ray shadowRay = new Ray(origin, light.position.minus(origin), 0.0, 1.0);
+        return scene.intersectsAny(shadowRay, scratch);
+    }
+
+    /**
+     * The reference, {@link Shadows#isShadowed}: the local offset, from the error bound of the
+     * hit point ({@link Numerics#pointError}), widened to the bound of the surface the shadow ray
+     * meets when it meets one within that surface's own rounding error of x.
+     */
     public static boolean scaleAware(Surface scene, Vec3 x, Vec3 n, PointLight light,
             IntersectionRecord scratch) {
         return Shadows.isShadowed(scene, x, n, light, scratch);

@@ -41,14 +41,26 @@ public final class Shadows {
     public static boolean isShadowed(Surface scene, Vec3 x, Vec3 n, PointLight light,
             IntersectionRecord scratch) {
         // BEGIN SOLUTION shadows
-        // Scale-aware offset: 64 to 128 ulps of the largest coordinate of x or of the scene,
-        // which bounds the rounding error of any hit point computed in this scene.
-        double magnitude = Numerics.magnitude(scene.boundingBox());
-        Vec3 origin = Numerics.offsetRayOrigin(x, n, light.position.minus(x), magnitude);
-        // Blockers with 0 < t < 1 only: the smallest positive double up to the largest below 1.
-        Ray shadowRay = new Ray(origin, light.position.minus(origin), Double.MIN_VALUE,
-                Math.nextDown(1.0));
-        return scene.intersectsAny(shadowRay, scratch);
+        // Local offset (pbrt-v4's OffsetRayOrigin with a per-hit error bound, docs/numerics.md):
+        // start off the surface by the error bound of x. If x lies on a surface much larger than
+        // x itself, its error is that surface's, and the shadow ray meets the surface again
+        // within that bound: then start again beyond the bound of the surface it met.
+        double error = Numerics.pointError(x, 0);
+        while (true) {
+            Vec3 origin = Numerics.offsetRayOrigin(x, error, n, light.position.minus(x));
+            // Blockers with 0 < t < 1 only: the smallest positive double up to the largest below 1.
+            Ray shadowRay = new Ray(origin, light.position.minus(origin), Double.MIN_VALUE,
+                    Math.nextDown(1.0));
+            if (!scene.intersectsAny(shadowRay, scratch)) {
+                return false;
+            }
+            double met = Numerics.pointError(x, Numerics.magnitude(scratch.surface.boundingBox()));
+            double height = Math.abs(shadowRay.evaluate(scratch.t).minus(x).dot(n));
+            if (met <= error || height > Numerics.offsetFor(met)) {
+                return true; // a blocker beyond the rounding error of the surface at x
+            }
+            error = met;
+        }
         // STUB
         // // TODO(shadows): a shadow ray from just off x toward the light, blockers 0 < t < 1.
         // throw new NotImplemented("shadows", "Shadows.isShadowed");

@@ -76,90 +76,170 @@ final class AccelerationExperiment implements Experiment {
         return hits;
     }
 
+    /** The verdict at one triangle count: both must give the linear group's answers (tolerance 0); cost per ray. */
+    static Verdict decide(double mismatchPercent, Timing.Stats linear, Timing.Stats bvh) {
+        return Verdict.decide(List.of(new Verdict.Option("the linear group", 0, linear),
+                new Verdict.Option("the BVH", mismatchPercent, bvh)), 0);
+    }
+
+    /**
+     * The count from which the BVH is recommended at every larger count measured (-1: not at the
+     * largest), from the per-count verdicts.
+     */
+    static int crossover(int[] counts, Verdict[] perCount) {
+        int from = -1;
+        for (int i = counts.length - 1; i >= 0 && "the BVH".equals(perCount[i].recommended()); i--) {
+            from = counts[i];
+        }
+        return from;
+    }
+
+    /** The counts whose verdict is too close to call, as "8, 16". */
+    static String tooClose(int[] counts, Verdict[] perCount) {
+        List<String> out = new ArrayList<>();
+        for (int i = 0; i < counts.length; i++) {
+            if (perCount[i].kind == Verdict.Kind.TOO_CLOSE) {
+                out.add(String.format("%,d", counts[i]));
+            }
+        }
+        return String.join(", ", out);
+    }
+
+    /** The bold headline of the conclusion, from the per-count verdicts. */
+    static String headline(int[] counts, Verdict[] perCount) {
+        int from = crossover(counts, perCount);
+        if (from < 0) {
+            return "the BVH is not recommended at any count measured";
+        }
+        return from == counts[0] ? "use the BVH for any scene measured" : String.format("use the BVH from %,d primitives on", from);
+    }
+
     @Override
     public void run(Study study) throws Exception {
-        int[] counts = study.quick ? new int[] {1, 4, 16, 64, 100, 1000, 10000}
+        int[] counts = study.quick ? new int[] {1, 4, 16, 64, 1000, 10000}
                 : new int[] {1, 2, 4, 8, 16, 32, 64, 100, 300, 1000, 3000, 10000, 30000, 100000, 300000, 1000000};
         double[] x = new double[counts.length];
         Timing.Stats[] linear = new Timing.Stats[counts.length];
         Timing.Stats[] bvh = new Timing.Stats[counts.length];
         Timing.Stats[] build = new Timing.Stats[counts.length];
+        double[] testsLinear = new double[counts.length];
+        double[] testsBvh = new double[counts.length];
+        double[] mismatch = new double[counts.length];
+        Verdict[] verdicts = new Verdict[counts.length];
         int[] linearRays = new int[counts.length];
-        Timing slow = study.quick ? study.timing : new Timing(0.2, 0.02, 7);
+        Timing slow = study.quick ? study.timing : new Timing(0.1, 0.02, 9);
         for (int i = 0; i < counts.length; i++) {
             int n = counts[i];
             x[i] = n;
             List<Triangle> tris = triangles(n, Study.SEED + n);
-            int buildRuns = n >= 100000 ? 3 : 5;
             Bvh[] tree = new Bvh[1];
-            build[i] = Timing.seconds(n >= 300000 ? 0 : 2, study.quick ? 3 : buildRuns, () -> tree[0] = new Bvh(tris, "bvh"));
+            int buildRuns = n >= 100000 ? 2 : 5;
+            build[i] = study.timing.seconds(n >= 30000 ? 0 : 1, study.quick ? 3 : buildRuns, () -> tree[0] = new Bvh(tris, "bvh"));
             Group group = new Group(tris, "group");
             IntersectionRecord rec = new IntersectionRecord();
             Ray[] many = rays(1024, Study.SEED);
             // The linear group at 10^5 and more triangles: fewer rays, so a run stays short.
             linearRays[i] = (int) Math.max(8, Math.min(1024, 4_000_000L / n));
             Ray[] few = java.util.Arrays.copyOf(many, linearRays[i]);
+            // Same answers? The closest t of every ray, both ways; and the tests each does per ray.
+            IntersectionRecord a = new IntersectionRecord();
+            IntersectionRecord b = new IntersectionRecord();
+            int differ = 0;
+            for (Ray ray : few) {
+                a.reset();
+                b.reset();
+                group.intersect(a, ray);
+                tree[0].intersect(b, ray);
+                if (a.hasHit() != b.hasHit() || a.hasHit() && a.t != b.t) {
+                    differ++;
+                }
+            }
+            testsLinear[i] = a.tests / (double) few.length;
+            testsBvh[i] = b.tests / (double) few.length;
+            mismatch[i] = 100.0 * differ / few.length;
             Timing t = n >= 30000 ? slow : study.timing;
-            linear[i] = t.nanosPerOp(reps -> trace(group, few, rec, reps), few.length);
-            bvh[i] = study.timing.nanosPerOp(reps -> trace(tree[0], many, rec, reps), many.length);
+            Timing.Stats[] both = t.nanosPerOpInterleaved(new Timing.Work[] {
+                reps -> trace(group, few, rec, reps), reps -> trace(tree[0], many, rec, reps)},
+                new long[] {few.length, many.length});
+            linear[i] = both[0];
+            bvh[i] = both[1];
+            verdicts[i] = decide(mismatch[i], linear[i], bvh[i]);
             study.log(String.format("bvh: n=%d linear %.0f ns/ray, BVH %.0f ns/ray, build %.4f s", n,
                     linear[i].median(), bvh[i].median(), build[i].median()));
         }
+
+        List<Plots.FrontPoint> lp = new ArrayList<>();
+        List<Plots.FrontPoint> bp = new ArrayList<>();
+        for (int i = 0; i < counts.length; i++) {
+            lp.add(new Plots.FrontPoint(linear[i], mismatch[i]));
+            bp.add(new Plots.FrontPoint(bvh[i], mismatch[i]));
+        }
+        XYChart front = Plots.front("Acceleration: error against time per ray",
+                "time per ray (ns, log; bar: quartiles), one point per triangle count", "wrong closest hits (% of rays)",
+                true, false, 0, List.of(new Plots.Curve("linear group", lp), new Plots.Curve("BVH (SAH, 12 bins)", bp)));
+        Plots.save(front, study.out, "bvh-front.png");
 
         XYChart c = Plots.xy("Time per ray against triangle count", "triangles", "time per ray (ns)", true, true);
         Plots.timed(c, "linear group", x, linear, 0);
         Plots.timed(c, "BVH (SAH, 12 bins)", x, bvh, 1);
         Plots.save(c, study.out, "bvh-time-per-ray.png");
+        XYChart ops = Plots.xy("Intersection tests per ray against triangle count", "triangles",
+                "ray–triangle tests per ray", true, true);
+        Plots.line(ops, "linear group", x, testsLinear, 0);
+        Plots.line(ops, "BVH (SAH, 12 bins)", x, testsBvh, 1);
+        Plots.save(ops, study.out, "bvh-tests-per-ray.png");
         XYChart b = Plots.xy("BVH build time against triangle count", "triangles", "build time (s)", true, true);
-        Timing.Stats[] buildPositive = new Timing.Stats[counts.length];
-        for (int i = 0; i < counts.length; i++) {
-            Timing.Stats s = build[i];
-            buildPositive[i] = new Timing.Stats(Math.max(s.median(), 1e-9), Math.max(s.min(), 1e-9), Math.max(s.max(), 1e-9), s.runs());
-        }
-        Plots.timed(b, "BVH build", x, buildPositive, 1);
+        Plots.timed(b, "BVH build", x, build, 1);
         Plots.save(b, study.out, "bvh-build-time.png");
 
-        // The count from which the BVH is faster at every larger count measured.
-        int crossover = -1;
-        for (int i = counts.length - 1; i >= 0 && bvh[i].median() < linear[i].median(); i--) {
-            crossover = counts[i];
-        }
         int last = counts.length - 1;
-        double speedup = linear[last].median() / bvh[last].median();
+        Timing.Ratio speedup = Timing.ratio(linear[last], bvh[last]);
         double breakEvenRays = build[last].median() * 1e9 / (linear[last].median() - bvh[last].median());
         double slopeLinear = SamplingExperiment.slope(x, values(linear));
         double slopeBvh = SamplingExperiment.slope(x, values(bvh));
+        int from = crossover(counts, verdicts);
+        String close = tooClose(counts, verdicts);
 
         Report r = study.report;
         r.section("A linear group against the bounding volume hierarchy");
+        r.plot("bvh-front.png", "error against time per ray, one point per triangle count: both structures give the linear"
+                + " group's closest hit on every ray checked, so the front is decided by time alone");
         r.paragraph(String.format("n random triangles (seeded) in the unit cube, each about 1/∛n across; closest-hit rays"
-                + " from a sphere around the cube toward random points inside it. Time per ray: median of the"
-                + " runs, bars from fastest to slowest run. The linear group gets fewer rays at large n (%d at"
-                + " n = %,d) so that each run stays short; every count is measured, nothing is extrapolated."
-                + " Build time: the BVH constructor (SAH over 12 bins, leaves of up to 4), %s.",
-                linearRays[last], counts[last], "median of 3–5 builds"));
+                + " from a sphere around the cube toward random points inside it. Both structures must give the same"
+                + " closest hit: the error axis of the front is the share of rays whose closest t differs from the"
+                + " linear group's (it was %s), so the front is decided by time. Time per ray: the two structures and the"
+                + " calibration loop in turns, median of the runs, bars from fastest to slowest run. The linear group gets"
+                + " fewer rays at large n (%d at n = %,d) so that each run stays short; every count is measured, nothing"
+                + " is extrapolated. Load-independent cost: ray–triangle tests per ray, as counted by the structures."
+                + " Build time: the BVH constructor (SAH over 12 bins, leaves of up to 4), median of 2–5 builds.",
+                TriangleExperiment.max(mismatch) == 0 ? "0 at every count" : String.format("at most %.2f%%", TriangleExperiment.max(mismatch)),
+                linearRays[last], counts[last]));
         r.plot("bvh-time-per-ray.png", "time per ray against triangle count, log-log");
+        r.plot("bvh-tests-per-ray.png", "intersection tests per ray against triangle count, log-log");
         r.plot("bvh-build-time.png", "BVH build time against triangle count, log-log");
         List<String[]> rows = new ArrayList<>();
-        rows.add(new String[] {"triangles", "linear (ns/ray)", "BVH (ns/ray)", "speed-up", "BVH build (ms)"});
+        rows.add(new String[] {"triangles", "linear (ns/ray)", "BVH (ns/ray)", "linear / BVH time (95% interval)",
+            "tests/ray linear", "tests/ray BVH", "verdict", "BVH build (ms)"});
         for (int i = 0; i < counts.length; i++) {
+            Verdict v = verdicts[i];
             rows.add(new String[] {String.format("%,d", counts[i]), linear[i].format("%,.0f"), bvh[i].format("%,.0f"),
-                String.format("%.1f×", linear[i].median() / bvh[i].median()), build[i].scaled(1000).format("%,.3f")});
+                Timing.ratio(linear[i], bvh[i]).format(), String.format("%,.1f", testsLinear[i]), String.format("%,.1f", testsBvh[i]),
+                v.recommended() != null ? v.recommended() : Verdict.TOO_CLOSE, build[i].scaled(1000).format("%,.3f")});
         }
         r.table(rows);
         r.paragraph(String.format("Fitted over the counts from 4 on, the linear group's time per ray grows as n^%.2f,"
                 + " the BVH's as n^%.2f. The renderer switches to a BVH from %d primitives"
-                + " (RenderPlan.ACCELERATION_THRESHOLD); in this measurement the BVH is faster at every count from %s"
-                + " triangles on.", slopeLinear, slopeBvh, RenderPlan.ACCELERATION_THRESHOLD,
-                crossover < 0 ? "(never)" : String.valueOf(crossover)));
+                + " (RenderPlan.ACCELERATION_THRESHOLD).", slopeLinear, slopeBvh, RenderPlan.ACCELERATION_THRESHOLD));
 
-        r.conclude(String.format("**Acceleration: use the BVH%s.** It is faster at every count from %s triangles on"
-                + " (the renderer switches at %d); at %,d triangles it is %.0f× faster per ray (%,.0f ns against"
-                + " %,.0f ns). The linear cost grows as n^%.2f, the BVH's as n^%.2f. Its build (%.2f s at %,d)"
-                + " pays for itself after about %,.0f rays, %s one 640×480 image.",
-                crossover < 0 ? " only where measured faster" : crossover <= 1 ? " for any scene" : " from " + crossover + " primitives on",
-                crossover < 0 ? "(never)" : String.valueOf(crossover), RenderPlan.ACCELERATION_THRESHOLD, counts[last],
-                speedup, bvh[last].median(), linear[last].median(), slopeLinear, slopeBvh, build[last].median(), counts[last],
+        r.conclude(String.format("**Acceleration: %s.** Applying the rule at each count, the BVH is recommended at every"
+                + " count from %s on%s (the renderer switches at %d); at %,d triangles the linear group takes %s the BVH's"
+                + " time per ray (%,.0f ns against %,.0f ns) and %,.0f times its ray–triangle tests. The linear cost grows"
+                + " as n^%.2f, the BVH's as n^%.2f. Its build (%.2f s at %,d) pays for itself after about %,.0f rays, %s"
+                + " one 640×480 image.",
+                headline(counts, verdicts), from < 0 ? "(none)" : String.format("%,d", from),
+                close.isEmpty() ? "" : "; at " + close + " triangles the costs are " + Verdict.TOO_CLOSE,
+                RenderPlan.ACCELERATION_THRESHOLD, counts[last], speedup.format(), linear[last].median(), bvh[last].median(),
+                testsLinear[last] / testsBvh[last], slopeLinear, slopeBvh, build[last].median(), counts[last],
                 breakEvenRays, breakEvenRays < 640 * 480 ? "less than" : "more than"));
     }
 

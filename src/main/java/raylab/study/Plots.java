@@ -4,6 +4,7 @@ import java.awt.Color;
 import java.awt.Font;
 import java.io.IOException;
 import java.nio.file.Path;
+import java.util.ArrayList;
 import java.util.List;
 
 import org.knowm.xchart.BitmapEncoder;
@@ -24,7 +25,7 @@ final class Plots {
     static final int HEIGHT = 460;
     /** A palette that stays readable in print and for colour-blind readers (Okabe–Ito). */
     static final Color[] PALETTE = {new Color(0, 114, 178), new Color(213, 94, 0), new Color(0, 158, 115),
-        new Color(204, 121, 167), new Color(230, 159, 0), new Color(86, 180, 233), new Color(0, 0, 0)};
+        new Color(204, 121, 167), new Color(230, 159, 0), new Color(86, 180, 233), new Color(120, 70, 20)};
 
     private Plots() {
     }
@@ -117,6 +118,113 @@ final class Plots {
 
     static void bars(CategoryChart chart, String name, List<String> x, List<? extends Number> y) {
         chart.addSeries(name, x, y);
+    }
+
+    /** One point of a front: a method (at one setting) with its measured cost and its error. */
+    record FrontPoint(Timing.Stats cost, double error) {
+    }
+
+    /** One method on a front: a single point, or a curve over a setting (samples per pixel, triangles). */
+    record Curve(String name, List<FrontPoint> points) {
+    }
+
+    /**
+     * Indices (curve, point) of the non-dominated points: no other point has a cost and an
+     * error both at most as large, one of them smaller. Costs compare by median.
+     */
+    static boolean[][] nonDominated(List<Curve> curves) {
+        boolean[][] front = new boolean[curves.size()][];
+        for (int c = 0; c < curves.size(); c++) {
+            List<FrontPoint> ps = curves.get(c).points();
+            front[c] = new boolean[ps.size()];
+            for (int i = 0; i < ps.size(); i++) {
+                FrontPoint p = ps.get(i);
+                boolean dominated = false;
+                for (Curve other : curves) {
+                    for (FrontPoint q : other.points()) {
+                        double qc = q.cost().median();
+                        double pc = p.cost().median();
+                        if (qc <= pc && q.error() <= p.error() && (qc < pc || q.error() < p.error())) {
+                            dominated = true;
+                        }
+                    }
+                }
+                front[c][i] = !dominated;
+            }
+        }
+        return front;
+    }
+
+    /**
+     * An error-against-cost plot: each method a point or a curve at the median cost, with a
+     * horizontal bar over the middle half of its runs (first to third quartile), and the front (the
+     * non-dominated points: nothing else is both cheaper and more accurate) joined by a black
+     * dashed line; the legend marks the methods on it. On a logarithmic error axis an error of 0
+     * is drawn at {@code floor} (the caption says so).
+     */
+    static XYChart front(String title, String xTitle, String yTitle, boolean logX, boolean logY, double floor,
+            List<Curve> curves) {
+        XYChart chart = xy(WIDTH, title, xTitle, yTitle, logX, logY);
+        legendRight(chart);
+        boolean[][] front = nonDominated(curves);
+        List<double[]> fp = new ArrayList<>();
+        for (int c = 0; c < curves.size(); c++) {
+            Curve curve = curves.get(c);
+            int n = curve.points().size();
+            double[] x = new double[n];
+            double[] y = new double[n];
+            boolean onFront = false;
+            for (int i = 0; i < n; i++) {
+                FrontPoint p = curve.points().get(i);
+                x[i] = p.cost().median();
+                y[i] = logY ? Math.max(p.error(), floor) : p.error();
+                if (front[c][i]) {
+                    fp.add(new double[] {x[i], y[i]});
+                    onFront = true;
+                }
+            }
+            XYSeries s = line(chart, curve.name() + (onFront ? " (on the front)" : ""), x, y, c);
+            if (n == 1) {
+                s.setXYSeriesRenderStyle(XYSeries.XYSeriesRenderStyle.Scatter);
+            }
+            Color colour = PALETTE[c % PALETTE.length];
+            for (int i = 0; i < n; i++) {
+                Timing.Stats cost = curve.points().get(i).cost();
+                if (cost.q3() > cost.q1()) {
+                    XYSeries bar = chart.addSeries(curve.name() + " spread " + i, new double[] {cost.q1(), cost.q3()},
+                            new double[] {y[i], y[i]});
+                    bar.setLineColor(colour);
+                    bar.setMarker(SeriesMarkers.NONE);
+                    bar.setShowInLegend(false);
+                }
+            }
+        }
+        fp.sort((a, b) -> Double.compare(a[0], b[0]));
+        if (fp.size() >= 2) {
+            XYSeries f = chart.addSeries("the front (non-dominated)", fp.stream().mapToDouble(p -> p[0]).toArray(),
+                    fp.stream().mapToDouble(p -> p[1]).toArray());
+            f.setLineColor(Color.BLACK);
+            f.setLineStyle(new java.awt.BasicStroke(1.5f, java.awt.BasicStroke.CAP_BUTT,
+                    java.awt.BasicStroke.JOIN_MITER, 10f, new float[] {5f, 4f}, 0f));
+            f.setMarker(SeriesMarkers.NONE);
+        }
+        chart.getStyler().setMarkerSize(9);
+        return chart;
+    }
+
+    /** The names of the curves with at least one non-dominated point. */
+    static List<String> frontNames(List<Curve> curves) {
+        boolean[][] front = nonDominated(curves);
+        List<String> out = new ArrayList<>();
+        for (int c = 0; c < curves.size(); c++) {
+            for (boolean b : front[c]) {
+                if (b) {
+                    out.add(curves.get(c).name());
+                    break;
+                }
+            }
+        }
+        return out;
     }
 
     /** Writes the chart as DIR/file (a .png name), atomically. */

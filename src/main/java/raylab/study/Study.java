@@ -15,7 +15,7 @@ final class Study {
         this.out = out;
         this.quick = quick;
         this.report = report;
-        this.timing = quick ? new Timing(0.05, 0.004, 5) : new Timing(0.4, 0.02, 15);
+        this.timing = quick ? new Timing(0.05, 0.002, 15) : new Timing(0.3, 0.008, 31);
     }
 
     /** quick ? q : full. */

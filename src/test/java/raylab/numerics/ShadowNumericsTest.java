@@ -53,6 +53,15 @@ class ShadowNumericsTest {
 
     static Counts run(ShadowOffsets.ShadowTest test, long seed, double s, double translation,
             int scenes) {
+        return run(test, seed, s, translation, scenes, 0);
+    }
+
+    /**
+     * As above; with far &gt; 0 the scene also holds one small sphere (radius 1) at distance far
+     * from the coordinate origin, which makes the scene's bounding box huge.
+     */
+    static Counts run(ShadowOffsets.ShadowTest test, long seed, double s, double translation,
+            int scenes, double far) {
         SplittableRandom rnd = new SplittableRandom(seed);
         int acneCases = 0;
         int acne = 0;
@@ -77,6 +86,9 @@ class ShadowNumericsTest {
             Vec3 ld = m.apply(new Vec3(2, GAP, 6));
             all.add(new Triangle(la, lb, lc, M, "leaf"));
             all.add(new Triangle(la, lc, ld, M, "leaf"));
+            if (far > 0) {
+                all.add(new Sphere(Gen.unit(rnd).times(far), 1, M, "far"));
+            }
             Group scene = new Group(all, "scene");
             PointLight light = new PointLight(m.apply(LIGHT), Color.WHITE, true, "light");
             Vec3 highEye = m.apply(new Vec3(3, 12, 25));
@@ -166,12 +178,13 @@ class ShadowNumericsTest {
     void referenceHasNoAcneAndNoLeaks(double s, double translation) {
         long seed = Double.hashCode(s) * 131L + Double.hashCode(translation);
         Counts k = run(ShadowOffsets::scaleAware, seed, s, translation, 3);
+        Counts global = run(ShadowOffsets::sceneGlobal, seed, s, translation, 3);
         Counts fixed = run(ShadowOffsets::fixedEpsilon, seed, s, translation, 3);
         Counts xOnly = run(ShadowOffsets::hitPointScaled, seed, s, translation, 3);
         Counts none = run(ShadowOffsets::none, seed, s, translation, 3);
         System.out.printf("shadows s=%g T=%g: %d acne cases, %d leak cases; acne/leaks reference"
-                + " %d/%d, fixed 1e-6 %d/%d, |x|-only 2^-42 %d/%d, no offset %d/%d%n", s,
-                translation, k.acneCases, k.leakCases, k.acne, k.leaks, fixed.acne, fixed.leaks,
+                + " %d/%d, scene-global %d/%d, fixed 1e-6 %d/%d, |x|-only 2^-42 %d/%d, no offset %d/%d%n", s,
+                translation, k.acneCases, k.leakCases, k.acne, k.leaks, global.acne, global.leaks, fixed.acne, fixed.leaks,
                 xOnly.acne, xOnly.leaks, none.acne, none.leaks);
         assertTrue(k.acneCases > 500 && k.leakCases > 500, "seed " + seed + ": too few cases " + k);
         assertEquals(0, k.acne, "seed " + seed + ": self-shadowed points (acne) at scale " + s
@@ -214,5 +227,26 @@ class ShadowNumericsTest {
     void noOffsetHasAcne() {
         Counts k = run(ShadowOffsets::none, 97, 1, 1e3, 3);
         assertTrue(k.acne > 0, "seed 97: expected acne without an offset: " + k);
+    }
+
+    /**
+     * One small object added 10^12 away makes the scene-global offset 2^-46·10^12 ≈ 0.014, more
+     * than the leaf's height of 0.005: the old reference lets the light through the leaf. The
+     * local offset depends on the point and the surfaces it meets only: no leak, no acne.
+     */
+    @ParameterizedTest(name = "far object, translation {0}")
+    @org.junit.jupiter.params.provider.ValueSource(doubles = {0, 1e3})
+    void farObjectDoesNotMakeTheLeafLeak(double translation) {
+        long seed = 1012 + (long) translation;
+        Counts local = run(ShadowOffsets::scaleAware, seed, 1, translation, 3, 1e12);
+        Counts global = run(ShadowOffsets::sceneGlobal, seed, 1, translation, 3, 1e12);
+        System.out.printf("shadows, object 1e12 away, T=%g: local acne %d/%d leaks %d/%d;"
+                + " scene-global acne %d leaks %d%n", translation, local.acne, local.acneCases,
+                local.leaks, local.leakCases, global.acne, global.leaks);
+        assertTrue(local.leakCases > 500, "seed " + seed + ": too few leak cases " + local);
+        assertEquals(0, local.leaks, "seed " + seed + ": the reference leaks under the leaf " + local);
+        assertEquals(0, local.acne, "seed " + seed + ": the reference has acne " + local);
+        assertTrue(global.leaks > local.leakCases / 2,
+                "seed " + seed + ": expected the scene-global offset to leak under most of the leaf " + global);
     }
 }

@@ -22,12 +22,13 @@ import raylab.cli.Main;
 class StudyCommandTest {
     /** The plots the issue asks for, one file each. */
     static final List<String> PLOTS = List.of(
-            "sampling-error.png", "sampling-time.png", "sampling-error-vs-time.png",
-            "sphere-wrong.png", "sphere-error.png",
-            "triangle-cracks.png",
-            "shadow-acne.png", "shadow-leaks.png",
-            "bvh-time-per-ray.png", "bvh-build-time.png",
-            "box-wrong.png");
+            "sampling-front.png", "sampling-error.png",
+            "sphere-front.png", "sphere-wrong.png", "sphere-error.png",
+            "triangle-front.png", "triangle-cracks.png",
+            "shadow-front.png", "shadow-acne.png", "shadow-leaks.png",
+            "bvh-front.png", "bvh-time-per-ray.png", "bvh-tests-per-ray.png", "bvh-build-time.png",
+            "box-front.png", "box-wrong.png",
+            "plan-front.png");
 
     static int run(StringWriter out, StringWriter err, String... args) {
         return Main.run(new PrintWriter(out, true), new PrintWriter(err, true), args);

@@ -1,0 +1,179 @@
+package raylab.study;
+
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.util.ArrayList;
+import java.util.List;
+import java.util.stream.Stream;
+
+import raylab.math.Color;
+import raylab.ray.IntersectionRecord;
+import raylab.render.Mode;
+import raylab.render.RenderStats;
+import raylab.render.Renderer;
+import raylab.render.Shader;
+import raylab.scene.Effects;
+import raylab.scene.Scene;
+import raylab.scene.SceneLoader;
+
+/**
+ * What the render plan saves: every bundled scene rendered as planned and by brute force (every
+ * effect the scene allows switched on, a linear group instead of any BVH), on the same pixels;
+ * the images must be identical, and the time, shadow rays and intersection tests are compared.
+ */
+final class PlanExperiment implements Experiment {
+    static final String[] MODES = {"the plan", "brute force"};
+
+    @Override
+    public String name() {
+        return "plan";
+    }
+
+    @Override
+    public String title() {
+        return "what the render plan saves on the bundled scenes";
+    }
+
+    /**
+     * The brute-force renderer of a scene: every effect the scene does not switch off explicitly
+     * is switched on, and acceleration is off (a linear group). The effect switches cannot
+     * override the plan's own content checks (no ambient term when Ia is zero, no specular term
+     * without ks, no shadow rays for a single convex surface), so those shortcuts stay; the first
+     * two add exactly zero when taken.
+     */
+    static Renderer bruteForce(Scene scene) {
+        Effects e = scene.effects;
+        Effects all = new Effects(on(e.shadows()), on(e.specular()), on(e.ambient()), Boolean.FALSE);
+        return new Renderer(scene.withEffects(all));
+    }
+
+    private static Boolean on(Boolean b) {
+        return b == null ? Boolean.TRUE : b;
+    }
+
+    /** Renders every stride-th pixel in both directions; returns the colours, adds to stats. */
+    static Color[] render(Renderer r, int stride, RenderStats stats) {
+        Scene scene = r.scene();
+        Shader shader = new Shader(scene, r.root(), r.plan(), Mode.FULL);
+        IntersectionRecord rec = new IntersectionRecord();
+        List<Color> out = new ArrayList<>();
+        for (int y = stride / 2; y < scene.height; y += stride) {
+            for (int x = stride / 2; x < scene.width; x += stride) {
+                out.add(r.pixel(x, y, shader, rec, stats));
+            }
+        }
+        return out.toArray(new Color[0]);
+    }
+
+    /** The verdict for one scene: both must give the same image (tolerance 0 differing pixels); time per image. */
+    static Verdict decide(double differingPercent, Timing.Stats planned, Timing.Stats brute) {
+        return Verdict.decide(List.of(new Verdict.Option(MODES[0], differingPercent, planned),
+                new Verdict.Option(MODES[1], 0, brute)), 0);
+    }
+
+    @Override
+    public void run(Study study) throws Exception {
+        Report r = study.report;
+        r.section("What the render plan saves");
+        Path dir = Path.of("scenes");
+        List<Path> files = new ArrayList<>();
+        if (Files.isDirectory(dir)) {
+            try (Stream<Path> s = Files.list(dir)) {
+                s.filter(p -> p.getFileName().toString().endsWith(".json") && !p.getFileName().toString().contains("schema"))
+                        .sorted().forEach(files::add);
+            }
+        }
+        if (files.isEmpty()) {
+            r.paragraph("No bundled scenes found (run the study from the repository's root, where scenes/ is).");
+            r.conclude("**Render plan: not measured.** The bundled scenes were not found in ./scenes.");
+            return;
+        }
+        int stride = study.pick(4, 12);
+        int runs = study.pick(9, 7);
+        List<String[]> rows = new ArrayList<>();
+        rows.add(new String[] {"scene", "pixels traced", "differing pixels", "time as planned (ms)", "time brute force (ms)",
+            "brute / planned time (95% interval)", "shadow rays planned / brute", "intersection tests planned / brute",
+            "verdict"});
+        List<Plots.FrontPoint> planned = new ArrayList<>();
+        List<Plots.FrontPoint> brute = new ArrayList<>();
+        long shadowPlanned = 0;
+        long shadowBrute = 0;
+        long testsPlanned = 0;
+        long testsBrute = 0;
+        int identical = 0;
+        int planWins = 0;
+        List<String> close = new ArrayList<>();
+        List<Double> logRatios = new ArrayList<>();
+        for (Path file : files) {
+            Scene scene = SceneLoader.load(file);
+            Renderer p = new Renderer(scene);
+            Renderer b = bruteForce(scene);
+            RenderStats sp = new RenderStats();
+            RenderStats sb = new RenderStats();
+            Color[] ip = render(p, stride, sp);
+            Color[] ib = render(b, stride, sb);
+            int differ = 0;
+            for (int i = 0; i < ip.length; i++) {
+                if (ip[i].r != ib[i].r || ip[i].g != ib[i].g || ip[i].b != ib[i].b) {
+                    differ++;
+                }
+            }
+            identical += differ == 0 ? 1 : 0;
+            Timing.Stats[] t = study.timing.secondsInterleaved(1, runs,
+                    () -> render(p, stride, new RenderStats()), () -> render(b, stride, new RenderStats()));
+            double pct = 100.0 * differ / ip.length;
+            Verdict v = decide(pct, t[0], t[1]);
+            if (MODES[0].equals(v.recommended())) {
+                planWins++;
+            } else if (v.kind == Verdict.Kind.TOO_CLOSE) {
+                close.add(file.getFileName().toString());
+            }
+            Timing.Ratio ratio = Timing.ratio(t[1], t[0]);
+            logRatios.add(Math.log(ratio.value()));
+            planned.add(new Plots.FrontPoint(t[0].scaled(1000), pct));
+            brute.add(new Plots.FrontPoint(t[1].scaled(1000), 0));
+            shadowPlanned += sp.shadowRays;
+            shadowBrute += sb.shadowRays;
+            testsPlanned += sp.intersectionTests;
+            testsBrute += sb.intersectionTests;
+            rows.add(new String[] {file.getFileName().toString(), String.format("%,d", ip.length), String.valueOf(differ),
+                t[0].scaled(1000).format("%.1f"), t[1].scaled(1000).format("%.1f"), ratio.format(),
+                String.format("%,d / %,d", sp.shadowRays, sb.shadowRays),
+                String.format("%,d / %,d", sp.intersectionTests, sb.intersectionTests),
+                v.recommended() != null ? v.recommended() : v.kind == Verdict.Kind.TOO_CLOSE ? Verdict.TOO_CLOSE : "images differ"});
+            study.log(String.format("plan: %s planned %.1f ms, brute force %.1f ms, %d pixels differ", file.getFileName(),
+                    1000 * t[0].median(), 1000 * t[1].median(), differ));
+        }
+        Plots.save(Plots.front("Render plan: differing pixels against time", "time for the traced pixels (ms, log; bar: quartiles)",
+                "pixels differing from the brute-force image (%)", true, false, 0,
+                List.of(new Plots.Curve("as planned (one point per scene)", planned),
+                        new Plots.Curve("brute force (one point per scene)", brute))),
+                study.out, "plan-front.png");
+        r.plot("plan-front.png", "differing pixels against time, one point per scene and mode; dashed: the front");
+        r.paragraph(String.format("Each bundled scene (scenes/*.json) is rendered twice on the same pixels (every %d-th pixel"
+                + " in each direction, so that the brute force stays affordable): as planned (RenderPlan: BVH from %d"
+                + " primitives, shadow rays only where something can block, specular and ambient terms only where they"
+                + " add something) and by brute force (PlanExperiment.bruteForce: every effect the scene does not switch"
+                + " off turned on, a linear group instead of any BVH). This is the study's own brute force: the render"
+                + " plan itself has no brute-force mode in this build, and the effect switches cannot undo the plan's"
+                + " content checks (Ia = 0, no ks, a single convex surface). The two must give the same colour, bit for"
+                + " bit, at every traced pixel. Time: both in turns with the calibration loop, %d runs after a warm-up.",
+                stride, raylab.render.RenderPlan.ACCELERATION_THRESHOLD, runs));
+        r.table(rows);
+        double geo = 0;
+        for (double lr : logRatios) {
+            geo += lr / logRatios.size();
+        }
+        Verdict overall = Verdict.decide(List.of(
+                new Verdict.Option(MODES[0], identical == files.size() ? 0 : 1, Timing.Stats.exact(testsPlanned)),
+                new Verdict.Option(MODES[1], 0, Timing.Stats.exact(testsBrute))), 0);
+        r.conclude(String.format("**Render plan: %s.** The planned and brute-force images were identical in %d of %d bundled"
+                + " scenes; by the rule, the plan is recommended on time in %d of them%s. Over all scenes the plan cast"
+                + " %,d shadow rays where brute force cast %,d, and ran %,d intersection tests against %,d (%.1f%%); brute"
+                + " force took %.2f× the planned time (geometric mean over the scenes).",
+                overall.headline(), identical, files.size(), planWins,
+                close.isEmpty() ? "" : "; " + Verdict.TOO_CLOSE + " for " + String.join(", ", close),
+                shadowPlanned, shadowBrute, testsPlanned, testsBrute, 100.0 * testsPlanned / Math.max(1, testsBrute),
+                Math.exp(geo)));
+    }
+}
