@@ -26,7 +26,7 @@ import raylab.course.TestLauncher;
             "Details: grader/README.md."},
         exitCodeListHeading = "%nExit status:%n",
         exitCodeList = {"0:graded (whatever the score)", "1:the grader could not grade (results.json still written)",
-            "2:bad option"})
+            "2:bad option, or no such submission"})
 public final class GradeCommand implements Callable<Integer> {
     @Parameters(index = "0", paramLabel = "SUBMISSION", description = "Directory or zip of the student's files.")
     Path submission;
@@ -65,6 +65,13 @@ public final class GradeCommand implements Callable<Integer> {
 
     @Override
     public Integer call() throws IOException {
+        if (!Files.isDirectory(submission) && !Files.isRegularFile(submission)) {
+            // A wrong path is a bad option (exit 2, one line), not a submission scored 0.
+            throw raylab.cli.UserError.badInput(raylab.scene.Display.path(submission) + ": "
+                    + (Files.exists(submission, java.nio.file.LinkOption.NOFOLLOW_LINKS)
+                            ? "not a directory or a zip file" : "no such file or directory")
+                    + " (the submission to grade)");
+        }
         PrintStream stdout = new PrintStream(new java.io.FileOutputStream(java.io.FileDescriptor.out), true,
                 StandardCharsets.UTF_8);
         Files.createDirectories(out);
