@@ -225,6 +225,15 @@ public final class SceneLoader {
         }
     }
 
+    private static boolean hasLoneSurrogate(String s) {
+        for (int i = 0; i < s.length(); i++) {
+            if (Character.isSurrogate(s.charAt(i)) && Display.needsEscape(s, i)) {
+                return true;
+            }
+        }
+        return false;
+    }
+
     /** Why a path cannot be used, as a phrase (for InvalidPathException). */
     static String invalidPath(InvalidPathException e) {
         String reason = e.getReason() == null ? "" : e.getReason();
@@ -233,9 +242,8 @@ public final class SceneLoader {
         }
         if (reason.contains("Malformed input") || reason.contains("unmappable")) {
             return "the file name cannot be encoded in this system's file-name encoding ("
-                    + System.getProperty("sun.jnu.encoding", "unknown") + "): it has a lone surrogate"
-                    + " or a character that encoding lacks; use ASCII names or a UTF-8 locale"
-                    + " (LANG=C.UTF-8)";
+                    + System.getProperty("sun.jnu.encoding", "unknown") + "), which lacks some of its"
+                    + " characters; use ASCII names or a UTF-8 locale (LANG=C.UTF-8)";
         }
         return "not a usable file name: " + Display.escape(reason);
     }
@@ -385,11 +393,13 @@ public final class SceneLoader {
         }
         // Only their directions matter: scale both to a largest component of about 1 (exactly, by
         // a power of two) so that lengths, products and the normalisation cannot overflow.
+        Vec3 givenView = view;
+        Vec3 givenUp = up;
         view = direction(view);
         up = direction(up);
         if (!Camera.frameExists(view, up)) {
-            throw fail(n.get("up"), "up " + fmt(up) + " is parallel to the view direction "
-                    + fmt(view) + "; choose an up vector that is not parallel to it");
+            throw fail(n.get("up"), "up " + fmt(givenUp) + " is parallel to the view direction "
+                    + fmt(givenView) + "; choose an up vector that is not parallel to it");
         }
         if (kind.equals("perspectiveCamera")) {
             Node fovNode = n.get("fov");
@@ -497,7 +507,9 @@ public final class SceneLoader {
         } catch (SceneException e) {
             throw fail(fileNode, e.getMessage());
         } catch (InvalidPathException e) {
-            throw fail(fileNode, "cannot use " + JsonTree.quote(rel) + ": " + invalidPath(e));
+            throw fail(fileNode, "cannot use " + JsonTree.quote(rel) + ": " + (hasLoneSurrogate(rel)
+                    ? "the file name contains a lone surrogate (half of a UTF-16 pair), which no file"
+                    + " name can contain" : invalidPath(e)));
         }
         List<Triangle> triangles = new ArrayList<>(read.size());
         for (Vec3[] t : read) {
@@ -527,7 +539,7 @@ public final class SceneLoader {
         throw fail(n, "undefined material " + JsonTree.quote(ref)
                 + (close != null ? " (did you mean " + JsonTree.quote(close) + "?)" : "")
                 + "; defined materials: " + String.join(", ", materials.keySet().stream()
-                        .map(JsonTree::quote).toList()));
+                        .map(Display::escape).toList()));
     }
 
     private String name(Node obj, String fallback) throws SceneException {
