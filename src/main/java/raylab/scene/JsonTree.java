@@ -112,7 +112,7 @@ final class JsonTree {
 
     private static final Pattern PLAIN_KEY = Pattern.compile("[A-Za-z_$][A-Za-z0-9_$]*");
     private static final Pattern UNEXPECTED_CHAR =
-            Pattern.compile("^Unexpected character \\('(.)' \\(code (\\d+)\\)\\)");
+            Pattern.compile("^Unexpected character \\('(.)' \\(code (\\d+)[^)]*\\)\\)");
     private static final Pattern QUOTED = Pattern.compile("'([^']*)'");
     private static final Pattern CLOSE_MARKER =
             Pattern.compile("^Unexpected close marker '(.)': expected '(.)'");
@@ -356,6 +356,11 @@ final class JsonTree {
             }
             return error(pos(off), where, "expected a key in double quotes, got '" + c + "'");
         }
+        if (uc.find() && uc.group(1).charAt(0) == '\uFEFF') {
+            return error(pos(off), valuePath((int) off), "a byte-order mark (U+FEFF) in the middle of the"
+                    + " text; it may only stand at the very start of the file");
+        }
+        uc.reset();
         if (m.contains("expected a valid value") && uc.find()) {
             char c = uc.group(1).charAt(0);
             if (c == ']' && inside != null && inside.kind == Kind.ARRAY && !inside.items.isEmpty()) {
@@ -441,7 +446,7 @@ final class JsonTree {
     /** Jackson's message without its hints about features, sources and code points. */
     private static String cleanup(String m) {
         String s = firstLine(m);
-        s = s.replaceAll(" ?\\(code \\d+\\)", "");
+        s = s.replaceAll(" ?\\(code \\d+[^)]*\\)", "");
         s = s.replaceAll(" ?\\((?:for|start marker)[^)]*\\)+", "");
         s = s.replaceAll("\\[Source:[^\\]]*\\]", "");
         s = s.replaceAll(":? ?enable `[^`]*`.*$", "");
