@@ -41,7 +41,10 @@ import raylab.scene.Display;
  * </ul>
  */
 public final class PngFiles {
-    /** Test hook: pause this many milliseconds after each 64 KiB written (0 = none). */
+    /**
+     * Test hook (system property): pause this many milliseconds after each 4 KiB written, so that
+     * a test can stop the JVM while the temporary file is being written (0 or absent = none).
+     */
     static final String SLOW_WRITE_PROPERTY = "raylab.test.slowPngWriteMillis";
 
     private static final Object LOCK = new Object();
@@ -195,7 +198,7 @@ public final class PngFiles {
 
     private static void writeAll(FileChannel ch, ExposedBytes png) throws IOException {
         long pause = Long.getLong(SLOW_WRITE_PROPERTY, 0);
-        int chunk = 64 << 10;
+        int chunk = pause > 0 ? 4 << 10 : 1 << 20;
         for (int off = 0; off < png.size(); off += chunk) {
             ByteBuffer b = ByteBuffer.wrap(png.buffer(), off, Math.min(chunk, png.size() - off));
             while (b.hasRemaining()) {
