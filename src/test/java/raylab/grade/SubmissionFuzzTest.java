@@ -17,7 +17,7 @@ import com.code_intelligence.jazzer.junit.FuzzTest;
 
 import raylab.course.Assignment;
 import raylab.course.Assignments;
-import raylab.testing.OneLine;
+import raylab.fuzzing.OneLine;
 
 /**
  * Fuzzes the grader's intake of a submission ({@link Submission#read}, its public API): the input

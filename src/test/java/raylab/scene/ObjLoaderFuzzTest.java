@@ -11,7 +11,7 @@ import org.junit.jupiter.api.BeforeAll;
 import com.code_intelligence.jazzer.junit.FuzzTest;
 
 import raylab.math.Vec3;
-import raylab.testing.OneLine;
+import raylab.fuzzing.OneLine;
 
 /**
  * Fuzzes the OBJ reader through its public API with arbitrary bytes as an OBJ file. The property:

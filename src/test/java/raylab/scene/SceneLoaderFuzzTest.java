@@ -10,7 +10,7 @@ import org.junit.jupiter.api.BeforeAll;
 
 import com.code_intelligence.jazzer.junit.FuzzTest;
 
-import raylab.testing.OneLine;
+import raylab.fuzzing.OneLine;
 
 /**
  * Fuzzes the scene loader with arbitrary bytes as a scene file. The property: it either returns a

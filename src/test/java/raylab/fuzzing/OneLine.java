@@ -1,4 +1,4 @@
-package raylab.testing;
+package raylab.fuzzing;
 
 import raylab.scene.Display;
 
