@@ -8,6 +8,7 @@ import picocli.CommandLine;
 import picocli.CommandLine.IExecutionExceptionHandler;
 import picocli.CommandLine.ParseResult;
 import raylab.course.NotImplemented;
+import raylab.scene.Display;
 import raylab.scene.SceneException;
 
 /**
@@ -27,11 +28,11 @@ final class Errors implements IExecutionExceptionHandler {
             t = t.getCause();
         }
         if (t instanceof SceneException || t instanceof UserError) {
-            err.println("raylab: " + t.getMessage());
+            err.println("raylab: " + oneLine(t.getMessage()));
             return ((t instanceof UserError u) ? u.status : Main.BAD_INPUT);
         }
         if (t instanceof NotImplemented) {
-            err.println("raylab: " + t.getMessage());
+            err.println("raylab: " + oneLine(t.getMessage()));
             return Main.NOT_IMPLEMENTED;
         }
         if (t instanceof IOException || t instanceof UncheckedIOException) {
@@ -43,11 +44,11 @@ final class Errors implements IExecutionExceptionHandler {
         return Main.FAILED;
     }
 
+    /** A message as one line: line breaks and other control characters escaped, never cut. */
     static String oneLine(String s) {
         if (s == null) {
             return "(no message)";
         }
-        int nl = s.indexOf('\n');
-        return nl < 0 ? s : s.substring(0, nl);
+        return Display.escape(s.strip());
     }
 }

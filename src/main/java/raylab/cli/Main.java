@@ -39,7 +39,14 @@ public final class Main implements Runnable {
         CommandLine cl = commandLine();
         cl.setOut(out);
         cl.setErr(err);
-        return cl.execute(args);
+        try {
+            return cl.execute(args);
+        } catch (OutOfMemoryError e) {
+            // The last resort: sizes are checked before allocating, but never a stack trace.
+            err.println("raylab: out of memory (" + Errors.oneLine(e.getMessage()) + "); give Java more"
+                    + " memory, for example RAYLAB_JAVA_OPTS=-Xmx8g");
+            return FAILED;
+        }
     }
 
     /** The configured picocli command line (also used to list the subcommands in docs). */
@@ -49,8 +56,8 @@ public final class Main implements Runnable {
         cl.setExecutionExceptionHandler(new Errors());
         cl.setParameterExceptionHandler((ex, args) -> {
             PrintWriter err = ex.getCommandLine().getErr();
-            err.println("raylab: " + ex.getMessage() + " (see: " + ex.getCommandLine().getCommandSpec()
-                    .qualifiedName() + " --help)");
+            err.println("raylab: " + Errors.oneLine(ex.getMessage()) + " (see: "
+                    + ex.getCommandLine().getCommandSpec().qualifiedName() + " --help)");
             return BAD_INPUT;
         });
         for (String extra : OptionalCommands.NAMES) {

@@ -17,6 +17,7 @@ import raylab.render.PngFiles;
 import raylab.render.RenderPlan;
 import raylab.render.RenderStats;
 import raylab.render.Renderer;
+import raylab.scene.Display;
 import raylab.scene.Scene;
 import raylab.scene.SceneLoader;
 
@@ -85,18 +86,34 @@ public final class RenderCommand implements Callable<Integer> {
         if (reference != null) {
             ref = PngFiles.read(reference); // fail before rendering if the reference is unusable
         }
+        Path target = output != null ? output : defaultOutput(scenePath, mode);
+        Path diff = ref == null ? null : diffPath != null ? diffPath : sibling(target, ".diff.png");
+        // Fail before any work if an image could not be written: a directory, a device or a link
+        // in its place, a missing or read-only folder (only the default out/ is created).
+        try {
+            PngFiles.checkTarget(target, output == null);
+            if (diff != null) {
+                PngFiles.checkTarget(diff, output == null && diffPath == null);
+            }
+        } catch (PngFiles.OutputException e) {
+            throw UserError.badInput((output == null ? "" : "-o ") + e.getMessage());
+        }
         long t0 = System.nanoTime();
         Scene scene = SceneLoader.load(scenePath);
         if (spp != null) {
             scene = scene.withSamplesPerPixel(spp);
         }
         long loadNanos = System.nanoTime() - t0;
-        Path target = output != null ? output : defaultOutput(scenePath, mode);
+        String memory = Image.memoryProblem(scene.width, scene.height, Image.availableHeap());
+        if (memory != null) {
+            throw UserError.badInput(Display.path(scenePath) + ": " + memory);
+        }
 
         RenderPlan plan = bruteForce ? RenderPlan.bruteForce(scene) : new RenderPlan(scene);
         Renderer renderer = new Renderer(scene, plan, mode);
         if (!quiet) {
-            out.printf("raylab render %s -> %s (%dx%d, %s, %d thread%s)%n", scenePath, target,
+            out.printf("raylab render %s -> %s (%dx%d, %s, %d thread%s)%n", Display.path(scenePath),
+                    Display.path(target),
                     scene.width, scene.height, mode.name().toLowerCase(), threads, threads == 1 ? "" : "s");
             out.println(bruteForce ? "plan (brute force):" : "plan:");
             plan.describe().forEach(out::println);
@@ -108,6 +125,7 @@ public final class RenderCommand implements Callable<Integer> {
         }
         long t1 = System.nanoTime();
         BufferedImage picture = image.toBufferedImage();
+        image = null; // the linear picture is no longer needed: its memory may go while encoding
         PngFiles.write(picture, target);
         long writeNanos = System.nanoTime() - t1;
         if (!quiet) {
@@ -117,11 +135,10 @@ public final class RenderCommand implements Callable<Integer> {
             return Main.OK;
         }
         ImageCompare.Result result = ImageCompare.compare(picture, ref);
-        Path diff = diffPath != null ? diffPath : sibling(target, ".diff.png");
         PngFiles.write(result.diff(), diff);
         boolean match = result.matches(tolerance);
-        out.printf("compare with %s: %s: %s%n  diff heatmap: %s%n", reference, match ? "MATCH" : "DIFFERS",
-                result.summary(), diff);
+        out.printf("compare with %s: %s: %s%n  diff heatmap: %s%n", Display.path(reference),
+                match ? "MATCH" : "DIFFERS", result.summary(), Display.path(diff));
         return match ? Main.OK : Main.FAILED;
     }
 

@@ -69,6 +69,13 @@ public final class GradeCommand implements Callable<Integer> {
 
     @Override
     public Integer call() throws IOException {
+        if (!Files.isDirectory(submission) && !Files.isRegularFile(submission)) {
+            // A wrong path is a bad option (exit 2, one line), not a submission scored 0.
+            throw raylab.cli.UserError.badInput(raylab.scene.Display.path(submission) + ": "
+                    + (Files.exists(submission, java.nio.file.LinkOption.NOFOLLOW_LINKS)
+                            ? "not a directory or a zip file" : "no such file or directory")
+                    + " (the submission to grade)");
+        }
         PrintStream stdout = new PrintStream(new java.io.FileOutputStream(java.io.FileDescriptor.out), true,
                 StandardCharsets.UTF_8);
         Grader.Options o = Grader.Options.defaults(root.toAbsolutePath().normalize())

@@ -35,8 +35,11 @@ public final class Submission {
 
     private Submission(Map<String, String> files, Map<String, String> sources, List<String> ignored) {
         this.files = files;
-        this.sources = sources;
-        this.ignored = ignored;
+        // Paths in a zip may hold line breaks and other control characters: shown escaped.
+        Map<String, String> shown = new LinkedHashMap<>();
+        sources.forEach((k, v) -> shown.put(k, raylab.scene.Display.escape(v)));
+        this.sources = shown;
+        this.ignored = ignored.stream().map(raylab.scene.Display::escape).toList();
     }
 
     /** Accepted files: assignment path (e.g. src/main/java/raylab/surface/Sphere.java) to text. */

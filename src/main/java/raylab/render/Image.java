@@ -15,10 +15,56 @@ public final class Image {
     public final int height;
     private final double[] rgb;
 
+    /**
+     * Heap bytes per pixel while an image is rendered and converted: 24 for the linear radiance
+     * (three doubles) and 4 for the 8-bit picture, which exist together during the conversion.
+     * Encoding the PNG afterwards needs less (the 8-bit picture and the compressed bytes).
+     */
+    public static final int BYTES_PER_PIXEL = 28;
+    /** Heap kept free beside the pictures, for the renderer, the scene and the encoder. */
+    static final long MARGIN = 64L << 20;
+
     public Image(int width, int height) {
+        if (width < 1 || height < 1 || 3L * width * height > Integer.MAX_VALUE - 8) {
+            throw new IllegalArgumentException("image size " + width + "x" + height
+                    + " out of range");
+        }
         this.width = width;
         this.height = height;
         this.rgb = new double[3 * width * height];
+    }
+
+    /** Heap bytes needed to render and save a width × height image. */
+    public static long bytesNeeded(int width, int height) {
+        return (long) width * height * BYTES_PER_PIXEL + MARGIN;
+    }
+
+    /** Heap bytes this JVM can still allocate: its maximum heap minus what is in use now. */
+    public static long availableHeap() {
+        Runtime r = Runtime.getRuntime();
+        return r.maxMemory() - (r.totalMemory() - r.freeMemory());
+    }
+
+    /**
+     * Why a width × height image cannot be rendered with {@code available} bytes of heap, as a
+     * phrase, or null when it fits. Checked before allocating so that a too-large image is one
+     * clear line, never an OutOfMemoryError.
+     */
+    public static String memoryProblem(int width, int height, long available) {
+        long need = bytesNeeded(width, height);
+        if (need <= available) {
+            return null;
+        }
+        long gib = (need + (1L << 30) - 1) >> 30;
+        return String.format(java.util.Locale.ROOT, "a %dx%d image needs about %s of memory, but Java may use"
+                + " only %s more; render a smaller image or give Java more memory, for example"
+                + " RAYLAB_JAVA_OPTS=-Xmx%dg", width, height, size(need), size(Math.max(0, available)),
+                gib + 1);
+    }
+
+    private static String size(long bytes) {
+        return bytes >= (1L << 30) ? String.format(java.util.Locale.ROOT, "%.1f GiB", bytes / (double) (1L << 30))
+                : String.format(java.util.Locale.ROOT, "%d MiB", bytes >> 20);
     }
 
     public void set(int x, int y, Color c) {

@@ -15,6 +15,7 @@ import com.fasterxml.jackson.core.JsonFactory;
 import com.fasterxml.jackson.core.JsonParser;
 import com.fasterxml.jackson.core.JsonProcessingException;
 import com.fasterxml.jackson.core.JsonToken;
+import com.fasterxml.jackson.core.StreamReadConstraints;
 import com.fasterxml.jackson.core.StreamReadFeature;
 
 /**
@@ -96,13 +97,22 @@ final class JsonTree {
         }
     }
 
+    /**
+     * Longest number accepted, in characters. Far above Jackson's default (1,000) so that long
+     * numbers are read and reported at their own place like any other value (a 1,500-digit
+     * integer is "too large", a 1,500-digit fraction is just a fraction); longer ones are refused.
+     */
+    static final int MAX_NUMBER_LENGTH = 100_000;
+
     private static final JsonFactory FACTORY = JsonFactory.builder()
             .enable(StreamReadFeature.STRICT_DUPLICATE_DETECTION)
+            .streamReadConstraints(StreamReadConstraints.builder()
+                    .maxNumberLength(MAX_NUMBER_LENGTH).build())
             .build();
 
     private static final Pattern PLAIN_KEY = Pattern.compile("[A-Za-z_$][A-Za-z0-9_$]*");
     private static final Pattern UNEXPECTED_CHAR =
-            Pattern.compile("^Unexpected character \\('(.)' \\(code (\\d+)\\)\\)");
+            Pattern.compile("^Unexpected character \\('(.)' \\(code (\\d+)[^)]*\\)\\)");
     private static final Pattern QUOTED = Pattern.compile("'([^']*)'");
     private static final Pattern CLOSE_MARKER =
             Pattern.compile("^Unexpected close marker '(.)': expected '(.)'");
@@ -115,6 +125,8 @@ final class JsonTree {
     private JsonParser parser;
     /** The JSON path of what is being read, for syntax errors. */
     private String where = "$";
+    /** Offset of the last token read (for errors that Jackson places badly), or -1. */
+    private int lastToken = -1;
 
     private JsonTree(String text, String file) {
         this.text = text;
@@ -151,16 +163,25 @@ final class JsonTree {
     static String quote(String s) {
         String t = s.length() > 60 ? s.substring(0, 57) + "..." : s;
         StringBuilder b = new StringBuilder("\"");
-        for (char c : t.toCharArray()) {
+        for (int i = 0; i < t.length(); i++) {
+            char c = t.charAt(i);
             if (c == '"' || c == '\\') {
                 b.append('\\').append(c);
-            } else if (c < 0x20) {
-                b.append(String.format("\\u%04x", (int) c));
+            } else if (Display.needsEscape(t, i)) {
+                b.append(Display.escape(String.valueOf(c)));
             } else {
                 b.append(c);
             }
         }
         return b.append('"').toString();
+    }
+
+    /**
+     * A number as written, for messages: numbers longer than 40 characters are shortened to their
+     * first 20 characters and their length.
+     */
+    static String shortNumber(String raw) {
+        return raw.length() <= 40 ? raw : raw.substring(0, 20) + "... (" + raw.length() + " characters)";
     }
 
     private Node readDocument() throws SceneException {
@@ -221,7 +242,7 @@ final class JsonTree {
                 return new Node(Kind.STRING, path, pos, parser.getText(), 0, false);
             case VALUE_NUMBER_INT:
             case VALUE_NUMBER_FLOAT: {
-                String raw = parser.getText();
+                String raw = shortNumber(parser.getText());
                 double d = parser.getDoubleValue();
                 if (!Double.isFinite(d)) {
                     throw error(pos, path, "the number " + raw
@@ -264,7 +285,9 @@ final class JsonTree {
     }
 
     private Pos tokenPos() {
-        return pos(parser.currentTokenLocation().getCharOffset());
+        long off = parser.currentTokenLocation().getCharOffset();
+        lastToken = (int) Math.max(0, Math.min(off, text.length()));
+        return pos(off);
     }
 
     /** Line and column of a character offset (columns count characters, from 1). */
@@ -333,6 +356,11 @@ final class JsonTree {
             }
             return error(pos(off), where, "expected a key in double quotes, got '" + c + "'");
         }
+        if (uc.find() && uc.group(1).charAt(0) == '\uFEFF') {
+            return error(pos(off), valuePath((int) off), "a byte-order mark (U+FEFF) in the middle of the"
+                    + " text; it may only stand at the very start of the file");
+        }
+        uc.reset();
         if (m.contains("expected a valid value") && uc.find()) {
             char c = uc.group(1).charAt(0);
             if (c == ']' && inside != null && inside.kind == Kind.ARRAY && !inside.items.isEmpty()) {
@@ -404,8 +432,10 @@ final class JsonTree {
                     + FACTORY.streamReadConstraints().getMaxNestingDepth() + " levels)");
         }
         if (m.contains("Number value length") || m.contains("number value length")) {
-            return error(pos(wordStartBefore((int) off)), where, "a number with more than "
-                    + FACTORY.streamReadConstraints().getMaxNumberLength() + " characters");
+            // Jackson reports the place where it stopped, not where the number starts.
+            int start = longNumberStart();
+            return error(pos(start), valuePath(start), "a number with more than "
+                    + MAX_NUMBER_LENGTH + " characters");
         }
         if (m.contains("comment")) {
             return error(pos(off), where, "comments are not allowed in JSON");
@@ -416,7 +446,7 @@ final class JsonTree {
     /** Jackson's message without its hints about features, sources and code points. */
     private static String cleanup(String m) {
         String s = firstLine(m);
-        s = s.replaceAll(" ?\\(code \\d+\\)", "");
+        s = s.replaceAll(" ?\\(code \\d+[^)]*\\)", "");
         s = s.replaceAll(" ?\\((?:for|start marker)[^)]*\\)+", "");
         s = s.replaceAll("\\[Source:[^\\]]*\\]", "");
         s = s.replaceAll(":? ?enable `[^`]*`.*$", "");
@@ -436,6 +466,26 @@ final class JsonTree {
         String line = nl < 0 ? s : s.substring(0, nl);
         int cr = line.indexOf('\r');
         return cr < 0 ? line : line.substring(0, cr);
+    }
+
+    /**
+     * Where the over-long number starts: the first run of number characters longer than the limit
+     * after the last token Jackson returned.
+     */
+    private int longNumberStart() {
+        int from = lastToken < 0 ? 0 : lastToken;
+        int run = 0;
+        for (int i = from; i < text.length(); i++) {
+            char c = text.charAt(i);
+            if ((c >= '0' && c <= '9') || c == '-' || c == '+' || c == '.' || c == 'e' || c == 'E') {
+                if (++run > MAX_NUMBER_LENGTH) {
+                    return i - run + 1;
+                }
+            } else {
+                run = 0;
+            }
+        }
+        return from;
     }
 
     /** The index of the last non-whitespace character at or before i (or -1). */

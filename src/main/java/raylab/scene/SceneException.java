@@ -7,11 +7,12 @@ package raylab.scene;
 public class SceneException extends Exception {
     private static final long serialVersionUID = 1L;
 
+    /** The message is kept to one line: control characters in it are escaped ({@link Display}). */
     public SceneException(String oneLine) {
-        super(oneLine);
+        super(Display.escape(oneLine));
     }
 
     public SceneException(String oneLine, Throwable cause) {
-        super(oneLine, cause);
+        super(Display.escape(oneLine), cause);
     }
 }

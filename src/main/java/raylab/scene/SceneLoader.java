@@ -1,6 +1,7 @@
 package raylab.scene;
 
 import java.io.IOException;
+import java.io.InputStream;
 import java.nio.ByteBuffer;
 import java.nio.CharBuffer;
 import java.nio.charset.CharsetDecoder;
@@ -9,8 +10,10 @@ import java.nio.charset.CodingErrorAction;
 import java.nio.charset.StandardCharsets;
 import java.nio.file.AccessDeniedException;
 import java.nio.file.Files;
+import java.nio.file.InvalidPathException;
 import java.nio.file.NoSuchFileException;
 import java.nio.file.Path;
+import java.nio.file.attribute.BasicFileAttributes;
 import java.util.ArrayList;
 import java.util.Collection;
 import java.util.LinkedHashMap;
@@ -51,6 +54,8 @@ public final class SceneLoader {
     public static final int MAX_IMAGE_SIZE = 16384;
     /** Largest number of samples per pixel. */
     public static final int MAX_SAMPLES_PER_PIXEL = 4096;
+    /** Largest scene file read, in bytes (64 MiB); a longer file is refused before parsing. */
+    public static final long MAX_SCENE_BYTES = 64L << 20;
 
     /**
      * For each kind of JSON object, the keys the loader accepts, in documentation order. The kinds
@@ -127,37 +132,120 @@ public final class SceneLoader {
         REQUIRED_KEYS = java.util.Collections.unmodifiableMap(r);
     }
 
+    /** The scene file as shown in messages (control characters escaped). */
     private final String file;
+    private final Path source;
     private final Path dir;
 
     private SceneLoader(Path file) {
-        this.file = file.toString();
+        this.file = Display.path(file);
+        this.source = file;
         this.dir = file.getParent();
     }
 
-    /** Loads and checks a scene; every problem is a SceneException with a one-line message. */
+    /**
+     * Loads and checks a scene; every problem is a SceneException with a one-line message. Only
+     * a regular file (or a link to one) is read, and at most {@link #MAX_SCENE_BYTES} of it: a
+     * directory, pipe, socket or device is refused before anything is read from it.
+     */
     public static Scene load(Path file) throws SceneException {
-        String name = file.toString();
+        String name = Display.path(file);
         byte[] bytes;
         try {
-            if (Files.isDirectory(file)) {
-                throw new SceneException(name + ": is a directory, not a scene file");
+            refuseSpecialFile(file, name, "a scene file");
+            try (InputStream in = Files.newInputStream(file)) {
+                bytes = in.readNBytes((int) MAX_SCENE_BYTES + 1);
             }
-            bytes = Files.readAllBytes(file);
         } catch (NoSuchFileException e) {
             throw new SceneException(name + ": no such file");
         } catch (AccessDeniedException e) {
             throw new SceneException(name + ": permission denied");
         } catch (IOException e) {
-            throw new SceneException(name + ": cannot read: " + JsonTree.firstLine(e.getMessage()));
+            throw new SceneException(name + ": cannot read: " + Display.escape(JsonTree.firstLine(e.getMessage())));
+        } catch (InvalidPathException e) {
+            throw new SceneException(name + ": " + invalidPath(e));
         }
+        if (bytes.length > MAX_SCENE_BYTES) {
+            throw new SceneException(name + ": larger than " + (MAX_SCENE_BYTES >> 20)
+                    + " MiB; a scene file is a small JSON text (put large meshes in OBJ files)");
+        }
+        return fromBytes(bytes, file);
+    }
+
+    /**
+     * Checks and builds a scene from the bytes of a scene file as if it were read from {@code
+     * pretendFile} (the same checks as {@link #load}, without the file system).
+     */
+    public static Scene fromBytes(byte[] bytes, Path pretendFile) throws SceneException {
+        String name = Display.path(pretendFile);
         for (int i = 0; i < bytes.length; i++) {
             if (bytes[i] == 0) {
                 throw new SceneException(name + ": not a text file (NUL byte at offset " + i
                         + "); a scene file is UTF-8 JSON text");
             }
         }
-        return parse(decodeUtf8(bytes, name), file);
+        return parse(decodeUtf8(bytes, name), pretendFile);
+    }
+
+    /**
+     * Refuses what exists but is not a regular file (or a link to one), before it is opened:
+     * reading a FIFO would wait forever, a device such as /dev/zero never ends.
+     *
+     * @param what "a scene file", "an OBJ file", for the message
+     */
+    static void refuseSpecialFile(Path file, String name, String what) throws SceneException {
+        BasicFileAttributes a;
+        try {
+            a = Files.readAttributes(file, BasicFileAttributes.class);
+        } catch (IOException missingOrUnreadable) {
+            return; // opening it gives the precise reason (no such file, permission denied)
+        }
+        if (a.isDirectory()) {
+            throw new SceneException(name + ": is a directory, not " + what);
+        }
+        if (!a.isRegularFile()) {
+            throw new SceneException(name + ": is " + specialKind(file) + ", not a regular file; "
+                    + what + " must be a regular file");
+        }
+    }
+
+    /** "a named pipe (FIFO)", "a character device", ... or "a special file". */
+    private static String specialKind(Path file) {
+        try {
+            int mode = (Integer) Files.getAttribute(file, "unix:mode");
+            switch (mode & 0170000) {
+                case 0010000: return "a named pipe (FIFO)";
+                case 0020000: return "a character device";
+                case 0060000: return "a block device";
+                case 0140000: return "a socket";
+                default: return "a special file";
+            }
+        } catch (IOException | RuntimeException noUnixView) {
+            return "a special file";
+        }
+    }
+
+    private static boolean hasLoneSurrogate(String s) {
+        for (int i = 0; i < s.length(); i++) {
+            if (Character.isSurrogate(s.charAt(i)) && Display.needsEscape(s, i)) {
+                return true;
+            }
+        }
+        return false;
+    }
+
+    /** Why a path cannot be used, as a phrase (for InvalidPathException). */
+    static String invalidPath(InvalidPathException e) {
+        String reason = e.getReason() == null ? "" : e.getReason();
+        if (reason.contains("Nul character")) {
+            return "the file name contains a NUL character, which no file name can contain";
+        }
+        if (reason.contains("Malformed input") || reason.contains("unmappable")) {
+            return "the file name cannot be encoded in this system's file-name encoding ("
+                    + System.getProperty("sun.jnu.encoding", "unknown") + "), which lacks some of its"
+                    + " characters; use ASCII names or a UTF-8 locale (LANG=C.UTF-8)";
+        }
+        return "not a usable file name: " + Display.escape(reason);
     }
 
     /**
@@ -165,7 +253,10 @@ public final class SceneLoader {
      * messages start with it and mesh files are found relative to its directory.
      */
     public static Scene parse(String json, Path pretendFile) throws SceneException {
-        String name = pretendFile.toString();
+        String name = Display.path(pretendFile);
+        if (json.startsWith("\uFEFF")) {
+            json = json.substring(1); // a UTF-8 byte-order mark, as some Windows editors write
+        }
         if (json.isEmpty()) {
             throw new SceneException(name + ": the file is empty (expected a JSON object with"
                     + " image, camera and surfaces)");
@@ -209,7 +300,7 @@ public final class SceneLoader {
             throw fail(root, "a scene file must contain one JSON object {...}, got " + root.describe());
         }
         checkObject(root, "scene");
-        Scene.Builder b = Scene.builder().source(Path.of(file));
+        Scene.Builder b = Scene.builder().source(source);
 
         Node image = object(root.get("image"));
         checkObject(image, "image");
@@ -239,7 +330,7 @@ public final class SceneLoader {
                 if (e.getKey().isBlank()) {
                     throw failKey(ms, e.getKey(), "a material name must not be empty");
                 }
-                materials.put(e.getKey(), material(e.getValue(), e.getKey()));
+                materials.put(e.getKey(), material(e.getValue(), Display.escape(e.getKey())));
             }
         }
 
@@ -280,6 +371,11 @@ public final class SceneLoader {
         } else if (n.has("lookAt")) {
             Vec3 lookAt = vec3(n.get("lookAt"));
             view = lookAt.minus(eye);
+            if (!view.isFinite()) {
+                throw fail(n.get("lookAt"), "the view direction lookAt - eye = " + fmt(view)
+                        + " overflows (lookAt " + fmt(lookAt) + " and eye " + fmt(eye) + " are too far"
+                        + " apart for their difference to be represented); bring them closer together");
+            }
             if (view.lengthSquared() == 0) {
                 throw fail(n.get("lookAt"), "lookAt equals eye " + fmt(eye)
                         + ", so there is no view direction; lookAt must differ from eye");
@@ -295,9 +391,15 @@ public final class SceneLoader {
         if (up.lengthSquared() == 0) {
             throw fail(n.get("up"), "up must not be the zero vector");
         }
+        // Only their directions matter: scale both to a largest component of about 1 (exactly, by
+        // a power of two) so that lengths, products and the normalisation cannot overflow.
+        Vec3 givenView = view;
+        Vec3 givenUp = up;
+        view = direction(view);
+        up = direction(up);
         if (!Camera.frameExists(view, up)) {
-            throw fail(n.get("up"), "up " + fmt(up) + " is parallel to the view direction "
-                    + fmt(view) + "; choose an up vector that is not parallel to it");
+            throw fail(n.get("up"), "up " + fmt(givenUp) + " is parallel to the view direction "
+                    + fmt(givenView) + "; choose an up vector that is not parallel to it");
         }
         if (kind.equals("perspectiveCamera")) {
             Node fovNode = n.get("fov");
@@ -310,6 +412,12 @@ public final class SceneLoader {
         }
         double viewHeight = positive(n.get("viewHeight"), "viewHeight");
         return new OrthographicCamera(eye, view, up, viewHeight, width, height);
+    }
+
+    /** v scaled by a power of two so that its largest component lies in [1, 2). */
+    private static Vec3 direction(Vec3 v) {
+        int e = Math.getExponent(v.maxAbs());
+        return new Vec3(Math.scalb(v.x, -e), Math.scalb(v.y, -e), Math.scalb(v.z, -e));
     }
 
     // ---------------------------------------------------------------- materials
@@ -387,14 +495,21 @@ public final class SceneLoader {
         }
         double scale = n.has("scale") ? positive(n.get("scale"), "scale") : 1;
         Vec3 translate = n.has("translate") ? vec3(n.get("translate")) : Vec3.ZERO;
-        Path obj = dir == null ? Path.of(rel) : dir.resolve(rel);
+        Path obj;
         double[] v;
         try {
-            v = ObjLoader.read(obj, obj.toString()).triangleVertices();
+            obj = dir == null ? Path.of(rel) : dir.resolve(rel);
+            String display = Display.path(obj);
+            refuseSpecialFile(obj, display, "an OBJ file");
+            v = ObjLoader.read(obj, display).triangleVertices();
         } catch (ObjLoader.ObjException e) {
+            throw fail(fileNode, Display.escape(e.getMessage()));
+        } catch (SceneException e) {
             throw fail(fileNode, e.getMessage());
-        } catch (java.nio.file.InvalidPathException e) {
-            throw fail(fileNode, "invalid path " + JsonTree.quote(rel));
+        } catch (InvalidPathException e) {
+            throw fail(fileNode, "cannot use " + JsonTree.quote(rel) + ": " + (hasLoneSurrogate(rel)
+                    ? "the file name contains a lone surrogate (half of a UTF-16 pair), which no file"
+                    + " name can contain" : invalidPath(e)));
         }
         // Each coordinate as Vec3.times(scale).plus(translate) would compute it.
         double tx = translate.x;
@@ -406,7 +521,7 @@ public final class SceneLoader {
             v[i + 2] = v[i + 2] * scale + tz;
             if (!Double.isFinite(v[i]) || !Double.isFinite(v[i + 1]) || !Double.isFinite(v[i + 2])) {
                 throw fail(n.has("scale") ? n.get("scale") : fileNode, "scaling and translating "
-                        + obj + " gives coordinates too large to represent");
+                        + Display.path(obj) + " gives coordinates too large to represent");
             }
         }
         return new Mesh(v, m, name);
@@ -425,7 +540,8 @@ public final class SceneLoader {
         String close = suggest(ref, materials.keySet());
         throw fail(n, "undefined material " + JsonTree.quote(ref)
                 + (close != null ? " (did you mean " + JsonTree.quote(close) + "?)" : "")
-                + "; defined materials: " + String.join(", ", materials.keySet()));
+                + "; defined materials: " + String.join(", ", materials.keySet().stream()
+                        .map(Display::escape).toList()));
     }
 
     private String name(Node obj, String fallback) throws SceneException {
@@ -437,7 +553,8 @@ public final class SceneLoader {
             throw fail(obj.get("name"), "name must not be empty (leave it out for the default \""
                     + fallback + "\")");
         }
-        return s;
+        // Names are only shown (plan, trace, messages): control characters are kept escaped.
+        return Display.escape(s);
     }
 
     // ---------------------------------------------------------------- lights

@@ -1,0 +1,66 @@
+package raylab.scene;
+
+import java.nio.file.Path;
+
+/**
+ * Names, paths and other user-given text made safe to echo in a one-line message: control
+ * characters (line breaks included), Unicode line and paragraph separators, bidirectional
+ * overrides and lone surrogates are written as escapes ({@code \n}, {@code \t}, {@code \r},
+ * {@code \}{@code uXXXX}); everything else is kept as it is.
+ */
+public final class Display {
+    private Display() {
+    }
+
+    /** The text with every character that could break or disguise a line escaped. */
+    public static String escape(String s) {
+        if (s == null) {
+            return "null";
+        }
+        int i = 0;
+        while (i < s.length() && !needsEscape(s, i)) {
+            i++;
+        }
+        if (i == s.length()) {
+            return s;
+        }
+        StringBuilder b = new StringBuilder(s.length() + 16).append(s, 0, i);
+        for (; i < s.length(); i++) {
+            char c = s.charAt(i);
+            if (!needsEscape(s, i)) {
+                b.append(c);
+            } else if (c == '\n') {
+                b.append("\\n");
+            } else if (c == '\r') {
+                b.append("\\r");
+            } else if (c == '\t') {
+                b.append("\\t");
+            } else {
+                b.append(String.format("\\u%04x", (int) c));
+            }
+        }
+        return b.toString();
+    }
+
+    /** A path as given, escaped as {@link #escape(String)} does. */
+    public static String path(Path p) {
+        return escape(String.valueOf(p));
+    }
+
+    /** Whether the character at i must be escaped. */
+    static boolean needsEscape(String s, int i) {
+        char c = s.charAt(i);
+        if (c < 0x20 || (c >= 0x7f && c <= 0x9f) || c == '\u2028' || c == '\u2029'
+                || (c >= '\u202a' && c <= '\u202e') || (c >= '\u2066' && c <= '\u2069')
+                || c == '\ufeff') {
+            return true;
+        }
+        if (Character.isHighSurrogate(c)) {
+            return i + 1 >= s.length() || !Character.isLowSurrogate(s.charAt(i + 1));
+        }
+        if (Character.isLowSurrogate(c)) {
+            return i == 0 || !Character.isHighSurrogate(s.charAt(i - 1));
+        }
+        return false;
+    }
+}
