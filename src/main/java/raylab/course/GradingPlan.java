@@ -139,6 +139,27 @@ public final class GradingPlan {
         return new Plan(a, visible, hidden);
     }
 
+    /**
+     * The graded scene that is this scene file, if a milestone of the project at {@code root}
+     * grades it (for {@code render --compare}'s default tolerance); empty when there are no
+     * assignments or they cannot be read.
+     */
+    public static java.util.Optional<Assignment.GradedScene> gradedScene(Path root, Path scene) {
+        try {
+            Path wanted = scene.toAbsolutePath().normalize();
+            for (Assignment a : Assignments.load(root).all()) {
+                for (Assignment.GradedScene g : a.scenes()) {
+                    if (root.resolve(g.scene()).toAbsolutePath().normalize().equals(wanted)) {
+                        return java.util.Optional.of(g);
+                    }
+                }
+            }
+        } catch (IOException | RuntimeException e) {
+            // no assignments here: no grading tolerance
+        }
+        return java.util.Optional.empty();
+    }
+
     /** A data case as the plan sees it. */
     public record CaseInfo(String name, double points, String visibility, String method, String file, String hint,
             JsonNode json) {
