@@ -15,7 +15,6 @@ import picocli.CommandLine.Spec;
 import raylab.course.Assignment;
 import raylab.course.Assignments;
 import raylab.course.MilestoneCheck;
-import raylab.course.TestResult;
 
 /** {@code raylab check [MILESTONE]}: runs the visible tests, renders the scenes, says what to do next. */
 @Command(name = "check", mixinStandardHelpOptions = true,
@@ -68,22 +67,32 @@ public final class CheckCommand implements Callable<Integer> {
         return outcomes.stream().allMatch(MilestoneCheck.Outcome::done) ? Main.OK : Main.FAILED;
     }
 
-    private static void printDetails(PrintWriter out, MilestoneCheck.Outcome o) {
+    /** How many failures are shown in full (message and hint); the rest get one line each. */
+    static final int FULL = 3;
+
+    static void printDetails(PrintWriter out, MilestoneCheck.Outcome o) {
         List<String> lines = new ArrayList<>();
         if (!o.problem().isEmpty()) {
             lines.add("  " + o.problem());
         }
-        List<TestResult> failing = o.tests().stream().filter(t -> !t.status().passed()).toList();
-        if (failing.size() > 1 && failing.stream().map(TestResult::message).distinct().count() == 1) {
+        List<MilestoneCheck.Outcome.Row> rows = o.rows();
+        List<MilestoneCheck.Outcome.Row> failing = rows.stream()
+                .filter(r -> !r.passed() && r.ran() && r.item().kind() != raylab.course.GradingPlan.Kind.SCENE).toList();
+        if (failing.size() > 1 && failing.stream().map(r -> r.message()).distinct().count() == 1) {
             lines.add("  FAIL all " + failing.size() + " failing tests: " + oneLine(failing.get(0).message()));
         } else {
-            for (TestResult t : failing.subList(0, Math.min(5, failing.size()))) {
-                String c = t.className().substring(t.className().lastIndexOf('.') + 1);
-                lines.add("  FAIL " + c + "." + t.method() + ": " + oneLine(t.message()));
-            }
-            if (failing.size() > 5) {
-                lines.add("  ... and " + (failing.size() - 5) + " more failing tests (./mvnw test -Dgroups="
-                        + o.assignment().id() + " shows them all)");
+            int shown = 0;
+            for (MilestoneCheck.Outcome.Row r : failing) {
+                String name = (r.item().kind() == raylab.course.GradingPlan.Kind.CASE ? "data case " : "")
+                        + "\"" + r.item().name() + "\"";
+                if (shown++ < FULL) {
+                    lines.add("  FAIL " + name);
+                    for (String l : r.message().strip().split("\n")) {
+                        lines.add("       " + l);
+                    }
+                } else {
+                    lines.add("  FAIL " + name + ": " + oneLine(r.message()));
+                }
             }
         }
         for (MilestoneCheck.SceneOutcome s : o.scenes()) {
@@ -93,6 +102,39 @@ public final class CheckCommand implements Callable<Integer> {
             out.println(o.assignment().id() + ":");
             lines.forEach(out::println);
         }
+        printPoints(out, o);
+    }
+
+    /**
+     * The points of everything the student can run locally, with the autograder's points and
+     * tolerances (both read them from assignment.json through GradingPlan), and a line for what is hidden.
+     */
+    static void printPoints(PrintWriter out, MilestoneCheck.Outcome o) {
+        if (o.plan() == null) {
+            return;
+        }
+        List<MilestoneCheck.Outcome.Row> rows = o.rows();
+        out.println(o.assignment().id() + ": points you can check here (the autograder gives the same)");
+        for (MilestoneCheck.Outcome.Row r : rows) {
+            raylab.course.GradingPlan.Item i = r.item();
+            String status = i.kind() == raylab.course.GradingPlan.Kind.SCENE ? (r.passed() ? "match" : "DIFF ")
+                    : (r.passed() ? "pass " : "FAIL ");
+            String pts = raylab.course.GradingPlan.points(r.passed() ? i.cents() : 0) + "/"
+                    + raylab.course.GradingPlan.points(i.cents());
+            String name = switch (i.kind()) {
+                case TEST -> "\"" + i.name() + "\"";
+                case CASE -> "data case \"" + i.name() + "\"";
+                case SCENE -> i.name() + " (tolerance " + raylab.course.GradingPlan.percent(i.tolerance()) + ")";
+            };
+            out.printf("  %s %-11s %s%n", status, pts, name);
+        }
+        out.println("  visible total: " + raylab.course.GradingPlan.points(o.earnedCents()) + " / "
+                + raylab.course.GradingPlan.points(o.plan().visibleCents()) + " points");
+        String hidden = o.plan().hiddenLine();
+        if (!hidden.isEmpty()) {
+            out.println("  " + hidden);
+        }
+        out.println();
     }
 
     private static String oneLine(String s) {
@@ -108,7 +150,7 @@ public final class CheckCommand implements Callable<Integer> {
         out.printf(fmt, "milestone", "tests passed", "scenes matching", "next");
         for (MilestoneCheck.Outcome o : outcomes) {
             String tests = o.problem().isEmpty() || !o.tests().isEmpty()
-                    ? o.testsPassed() + "/" + o.tests().size() : "-";
+                    ? o.testsPassed() + "/" + o.testCount() : "-";
             out.printf(fmt, o.assignment().id(), tests, o.scenesMatching() + "/" + o.scenes().size(), o.nextStep());
         }
     }

@@ -40,8 +40,24 @@ final class Errors implements IExecutionExceptionHandler {
             return Main.FAILED;
         }
         err.println("raylab: internal error: " + t.getClass().getSimpleName() + ": " + oneLine(t.getMessage())
-                + " (RAYLAB_DEBUG=1 shows the stack trace)");
+                + frames(t) + " (RAYLAB_DEBUG=1 shows the stack trace)");
         return Main.FAILED;
+    }
+
+    /**
+     * The raylab frames of the stack, innermost first (at most 6), so that an exception thrown
+     * by a student's method can be shown at its line in the student's file.
+     */
+    static String frames(Throwable t) {
+        StringBuilder b = new StringBuilder();
+        int n = 0;
+        for (StackTraceElement e : t.getStackTrace()) {
+            if (e.getClassName().startsWith("raylab.") && e.getFileName() != null && n < 6) {
+                b.append(n++ == 0 ? " [at " : " < ").append(e.getClassName()).append('.').append(e.getMethodName())
+                        .append('(').append(e.getFileName()).append(':').append(e.getLineNumber()).append(')');
+            }
+        }
+        return n == 0 ? "" : b.append(']').toString();
     }
 
     /** A message as one line: line breaks and other control characters escaped, never cut. */

@@ -7,7 +7,7 @@ import picocli.CommandLine;
  * out). They are looked up by name, so the command line works in both trees.
  */
 final class OptionalCommands {
-    static final String[] NAMES = {"raylab.course.release.ReleaseCommand", "raylab.grade.GradeCommand",
+    static final String[] NAMES = {"raylab.course.release.ReleaseCommand", "raylab.course.release.AssignmentCommand", "raylab.grade.GradeCommand",
         "raylab.grade.ReferenceCommand", "raylab.grade.BundleCommand", "raylab.study.StudyCommand"};
 
     private OptionalCommands() {

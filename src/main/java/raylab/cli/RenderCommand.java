@@ -59,8 +59,12 @@ public final class RenderCommand implements Callable<Integer> {
     Path diffPath;
 
     @Option(names = "--tolerance", paramLabel = "FRACTION",
-            description = "With --compare: the fraction of pixels allowed to differ (default: ${DEFAULT-VALUE}).")
-    double tolerance = 0.001;
+            description = "With --compare: the fraction of pixels allowed to differ (default: the scene's grading"
+                    + " tolerance in assignments/*/assignment.json, else " + DEFAULT_TOLERANCE + ").")
+    Double tolerance;
+
+    /** The tolerance of a scene that no milestone grades. */
+    static final double DEFAULT_TOLERANCE = 0.001;
 
     @Option(names = "--brute-force",
             description = "Render without any shortcut of the plan: every effect on, a shadow ray toward every light"
@@ -78,6 +82,12 @@ public final class RenderCommand implements Callable<Integer> {
         }
         if (spp != null && (spp < 1 || spp > 4096)) {
             throw UserError.badInput("--spp must be between 1 and 4096, got " + spp);
+        }
+        String toleranceSource = "";
+        if (tolerance == null) {
+            var graded = raylab.course.GradingPlan.gradedScene(Path.of("").toAbsolutePath(), scenePath);
+            tolerance = graded.map(g -> g.tolerance()).orElse(DEFAULT_TOLERANCE);
+            toleranceSource = graded.isPresent() ? " (the grading tolerance of " + graded.get().scene() + ")" : "";
         }
         if (!(tolerance >= 0 && tolerance <= 1)) {
             throw UserError.badInput("--tolerance must be a fraction between 0 and 1, got " + tolerance);
@@ -137,8 +147,9 @@ public final class RenderCommand implements Callable<Integer> {
         ImageCompare.Result result = ImageCompare.compare(picture, ref);
         PngFiles.write(result.diff(), diff);
         boolean match = result.matches(tolerance);
-        out.printf("compare with %s: %s: %s%n  diff heatmap: %s%n", Display.path(reference),
-                match ? "MATCH" : "DIFFERS", result.summary(), Display.path(diff));
+        out.printf("compare with %s: %s: %s%n  diff heatmap: %s%n  tolerance: %s%s%n", Display.path(reference),
+                match ? "MATCH" : "DIFFERS", result.summary(), Display.path(diff),
+                String.format(java.util.Locale.ROOT, "%.3f%%", 100 * tolerance), toleranceSource);
         return match ? Main.OK : Main.FAILED;
     }
 

@@ -64,14 +64,16 @@ public final class TraceCommand implements Callable<Integer> {
         Ray ray = scene.camera.rayThroughPixelCenter(x, y);
         out.println("eye ray");
         out.println("  p = " + v(ray.p) + "   d = " + v(ray.d) + "   t in [" + ray.tMin + ", " + ray.tMax + "]");
+        ContractCheck.walk(scene.surfaces, ray, out);
         IntersectionRecord hit = new IntersectionRecord();
         if (!renderer.root().intersect(hit, ray)) {
             out.println("  no hit: background " + c(scene.background));
             out.println(finalColour(scene.background));
             return Main.OK;
         }
-        out.printf("  hit \"%s\" at t = %s%n", hit.surface.name(), num(hit.t));
-        out.println("    point  x = " + v(hit.point));
+        out.printf("  hit \"%s\" at t = %s%s%n", hit.surface.name(), num(hit.t),
+                ContractCheck.flag(ContractCheck.rangeRule(ray, hit.t)));
+        out.println("    point  x = " + v(hit.point) + ContractCheck.flag(ContractCheck.nanRule("the point", hit.point)));
         Material m = hit.material;
         out.println("    material \"" + m.name() + "\": " + describe(m));
         shader.listen(new Printer(out));
@@ -83,7 +85,8 @@ public final class TraceCommand implements Callable<Integer> {
     private static String finalColour(Color c) {
         int rgb = Image.toRgb8(c);
         return String.format("colour L = %s  ->  8-bit sRGB (%d, %d, %d)%s", c(c), (rgb >> 16) & 0xFF,
-                (rgb >> 8) & 0xFF, rgb & 0xFF, c.isFinite() ? "" : "  NOT FINITE (drawn magenta)");
+                (rgb >> 8) & 0xFF, rgb & 0xFF, c.isFinite() ? "" : "  NOT FINITE (drawn magenta)"
+                        + ContractCheck.flag("a colour must be finite: NaN or infinity reached the sum of the terms"));
     }
 
     static String describe(Material m) {
@@ -123,12 +126,13 @@ public final class TraceCommand implements Callable<Integer> {
         @Override
         public void normal(Vec3 outward, Vec3 facing) {
             out.println("    normal n = " + v(facing) + (outward.equals(facing) ? "" : "  (outward normal "
-                    + v(outward) + " flipped: the ray hits the back side)"));
+                    + v(outward) + " flipped: the ray hits the back side)")
+                    + ContractCheck.flag(ContractCheck.unitRule(outward)));
         }
 
         @Override
         public void ambient(Color term) {
-            out.println("  ambient  ka*Ia = " + c(term));
+            out.println("  ambient  ka*Ia = " + c(term) + ContractCheck.flag(ContractCheck.nanRule("the ambient term", term)));
         }
 
         @Override
@@ -160,12 +164,12 @@ public final class TraceCommand implements Callable<Integer> {
 
         @Override
         public void diffuse(PointLight light, Color term) {
-            out.println("    diffuse  kd*I*max(0, n.l)     = " + c(term));
+            out.println("    diffuse  kd*I*max(0, n.l)     = " + c(term) + ContractCheck.flag(ContractCheck.nanRule("the diffuse term", term)));
         }
 
         @Override
         public void specular(PointLight light, Color term) {
-            out.println("    specular ks*I*max(0, n.h)^p   = " + c(term));
+            out.println("    specular ks*I*max(0, n.h)^p   = " + c(term) + ContractCheck.flag(ContractCheck.nanRule("the specular term", term)));
         }
     }
 }

@@ -41,9 +41,73 @@ public final class MilestoneCheck {
      *
      * @param problem a compile error or a failed run, empty if the tests ran
      */
-    public record Outcome(Assignment assignment, List<TestResult> tests, String problem, List<SceneOutcome> scenes) {
+    public record Outcome(Assignment assignment, List<TestResult> tests, String problem, List<SceneOutcome> scenes,
+            GradingPlan.Plan plan) {
+        /** Without a plan: tests in the order given. */
+        public Outcome(Assignment assignment, List<TestResult> tests, String problem, List<SceneOutcome> scenes) {
+            this(assignment, tests, problem, scenes, null);
+        }
+
+        /** One row of the points table: a visible test (all its invocations), a visible data case or a scene. */
+        public record Row(GradingPlan.Item item, boolean passed, boolean ran, String message) {
+        }
+
+        /**
+         * Everything the student can run locally, in the order the handout teaches (the test
+         * file's order, then data cases, then scenes), with the points the autograder gives.
+         */
+        public List<Row> rows() {
+            List<Row> out = new ArrayList<>();
+            if (plan == null) {
+                return out;
+            }
+            Map<String, List<TestResult>> groups = GradingPlan.byMethod(tests);
+            for (GradingPlan.Item i : plan.visible()) {
+                switch (i.kind()) {
+                    case TEST, CASE -> {
+                        List<TestResult> g = groups.get(i.kind() == GradingPlan.Kind.TEST ? i.key()
+                                : GradingPlan.casesClassName(assignment.id()) + "#" + i.key());
+                        if (g == null) {
+                            out.add(new Row(i, false, false, problem.isEmpty() ? "did not run" : problem));
+                        } else {
+                            TestResult bad = g.stream().filter(t -> !t.status().passed()).findFirst().orElse(null);
+                            long failed = g.stream().filter(t -> !t.status().passed()).count();
+                            String msg = bad == null ? "" : (g.size() > 1 ? (failed > 1 ? failed + " of " + g.size()
+                                    + " invocations failed; the first, " : "") + "[" + bad.displayName() + "] " : "")
+                                    + (bad.message() == null ? "" : bad.message());
+                            out.add(new Row(i, bad == null, true, msg));
+                        }
+                    }
+                    case SCENE -> {
+                        SceneOutcome so = scenes.stream().filter(x -> x.scene().scene().equals(i.key())).findFirst()
+                                .orElse(null);
+                        out.add(new Row(i, so != null && so.matches(), so != null, so == null ? "not rendered" : so.message()));
+                    }
+                    default -> {
+                    }
+                }
+            }
+            return out;
+        }
+
+        /** Points earned locally, in cents. */
+        public long earnedCents() {
+            return rows().stream().filter(Row::passed).mapToLong(r -> r.item().cents()).sum();
+        }
+
+        /** Tests (and data cases) counted the one way: a test method with all its invocations is one test. */
         public long testsPassed() {
+            if (plan != null) {
+                return rows().stream().filter(r -> r.item().kind() != GradingPlan.Kind.SCENE && r.passed()).count();
+            }
             return tests.stream().filter(t -> t.status().passed()).count();
+        }
+
+        public long testCount() {
+            if (plan != null) {
+                return rows().stream().filter(r -> r.item().kind() != GradingPlan.Kind.SCENE).count();
+            }
+            return tests.size();
         }
 
         public long scenesMatching() {
@@ -51,8 +115,44 @@ public final class MilestoneCheck {
         }
 
         public boolean done() {
-            return problem.isEmpty() && !tests.isEmpty() && testsPassed() == tests.size()
+            return problem.isEmpty() && !tests.isEmpty() && testsPassed() == testCount()
                     && scenesMatching() == scenes.size();
+        }
+
+        /** The failing tests, in handout order when there is a plan. */
+        private List<TestResult> failingInOrder() {
+            List<TestResult> failing = new ArrayList<>();
+            if (plan != null) {
+                Map<String, List<TestResult>> groups = GradingPlan.byMethod(tests);
+                for (Row r : rows()) {
+                    if (r.item().kind() != GradingPlan.Kind.SCENE && !r.passed() && r.ran()) {
+                        List<TestResult> g = groups.get(r.item().kind() == GradingPlan.Kind.TEST ? r.item().key()
+                                : GradingPlan.casesClassName(assignment.id()) + "#" + r.item().key());
+                        g.stream().filter(t -> !t.status().passed()).findFirst().ifPresent(failing::add);
+                    }
+                }
+                for (TestResult t : tests) {
+                    if (!t.status().passed() && !failing.contains(t) && failing.stream().noneMatch(
+                            f -> f.className().equals(t.className()) && f.method().equals(t.method()))) {
+                        failing.add(t);
+                    }
+                }
+                return failing;
+            }
+            return tests.stream().filter(t -> !t.status().passed()).toList();
+        }
+
+        /** The name a test has in the handout (its display name, or the case's name). */
+        public String nameOf(TestResult t) {
+            if (plan != null) {
+                for (GradingPlan.Item i : plan.visible()) {
+                    if (i.key().equals(GradingPlan.outer(t.className()) + "#" + t.method())
+                            || (i.kind() == GradingPlan.Kind.CASE && i.key().equals(t.method()))) {
+                        return i.kind() == GradingPlan.Kind.CASE ? "data case \"" + i.name() + "\"" : "\"" + i.name() + "\"";
+                    }
+                }
+            }
+            return simpleName(t.className()) + "." + t.method();
         }
 
         /** What to look at next, in one short line. */
@@ -64,18 +164,15 @@ public final class MilestoneCheck {
             if (tests.isEmpty()) {
                 return "no visible tests found for " + id;
             }
-            for (TestResult t : tests) {
-                if (!t.status().passed()) {
-                    String missing = missingMilestone(t.message());
-                    if (missing != null) {
-                        return missingStep(id, missing, t.message());
-                    }
+            List<TestResult> failing = failingInOrder();
+            for (TestResult t : failing) {
+                String missing = missingMilestone(t.message());
+                if (missing != null) {
+                    return missingStep(id, missing, t.message());
                 }
             }
-            for (TestResult t : tests) {
-                if (!t.status().passed()) {
-                    return "fix " + simpleName(t.className()) + "." + t.method() + ": " + oneLine(t.message(), 90);
-                }
+            for (TestResult t : failing) {
+                return "fix " + nameOf(t) + ": " + oneLine(t.message(), 90);
             }
             for (SceneOutcome s : scenes) {
                 if (s.status() == SceneStatus.NOT_IMPLEMENTED) {
@@ -127,8 +224,18 @@ public final class MilestoneCheck {
      */
     public static List<Outcome> run(Path root, List<Assignment> selected, int threads, Consumer<String> progress)
             throws IOException {
+        return run(root, selected, threads, progress, List.of());
+    }
+
+    /**
+     * As {@link #run(Path, List, int, Consumer)}, with {@code first} put before raylab's own
+     * classes (a test puts a student's compiled file there).
+     */
+    public static List<Outcome> run(Path root, List<Assignment> selected, int threads, Consumer<String> progress,
+            List<Path> first) throws IOException {
         Path work = root.resolve("target/check");
-        List<Path> own = JavaBuild.ownClassPath();
+        List<Path> own = new ArrayList<>(first);
+        own.addAll(JavaBuild.ownClassPath());
         Path helpers = work.resolve("helpers");
         deleteTree(work);
         progress.accept("compiling the visible tests ...");
@@ -153,6 +260,23 @@ public final class MilestoneCheck {
             }
             if (problems.containsKey(a.id())) {
                 continue;
+            }
+            // Visible data cases run as one generated test class, as the grader runs them.
+            List<GradingPlan.CaseInfo> cases = GradingPlan.cases(root, a).stream()
+                    .filter(c -> c.visibility().equals("visible")).toList();
+            if (!cases.isEmpty()) {
+                Path checker = caseChecker(root);
+                if (checker == null) {
+                    problems.put(a.id(), "the data cases need src/test/java/raylab/cases/CaseCheck.java, which is missing");
+                    continue;
+                }
+                Path gen = work.resolve("generated").resolve(a.id()).resolve(
+                        GradingPlan.casesClassName(a.id()).replace('.', '/') + ".java");
+                Files.createDirectories(gen.getParent());
+                Files.writeString(gen, GradingPlan.casesTestSource(a.id(), cases), StandardCharsets.UTF_8);
+                sources.add(gen);
+                sources.add(checker);
+                milestoneOfClass.put(GradingPlan.casesClassName(a.id()), a.id());
             }
             Path out = work.resolve("tests").resolve(a.id());
             List<Path> cp = new ArrayList<>(List.of(helpers));
@@ -195,20 +319,35 @@ public final class MilestoneCheck {
             List<SceneOutcome> scenes = new ArrayList<>();
             for (Assignment.GradedScene g : a.scenes()) {
                 progress.accept("rendering " + g.scene() + " ...");
-                scenes.add(render(root, g, own, threads));
+                scenes.add(render(root, g, own, threads, a.files().stream().map(Assignment.StudentFile::path).toList()));
             }
             out.add(new Outcome(a, results.getOrDefault(a.id(), List.of()), problems.getOrDefault(a.id(), ""),
-                    scenes));
+                    scenes, GradingPlan.of(root, a)));
         }
         return out;
+    }
+
+    /** The data-case checker: shipped in the starter, the grader's copy in the instructor's tree. */
+    static Path caseChecker(Path root) {
+        for (String p : List.of("src/test/java/raylab/cases/CaseCheck.java", "grader/tests/raylab/cases/CaseCheck.java")) {
+            if (Files.isRegularFile(root.resolve(p))) {
+                return root.resolve(p);
+            }
+        }
+        return null;
     }
 
     /** Renders a scene with {@code raylab render --compare} in a child JVM (so a stuck render can be stopped). */
     static SceneOutcome render(Path root, Assignment.GradedScene g, List<Path> classPath, int threads)
             throws IOException {
+        return render(root, g, classPath, threads, List.of());
+    }
+
+    static SceneOutcome render(Path root, Assignment.GradedScene g, List<Path> classPath, int threads,
+            List<String> studentFiles) throws IOException {
         String java = Path.of(System.getProperty("java.home"), "bin", "java").toString();
         Path png = root.resolve("out").resolve(baseName(g.scene()) + ".png");
-        List<String> cmd = List.of(java, "-Xmx1g", "-Djava.awt.headless=true", "-cp",
+        List<String> cmd = List.of(java, "-Xmx1g", "-XX:+ExitOnOutOfMemoryError", "-Djava.awt.headless=true", "-cp",
                 String.join(File.pathSeparator, classPath.stream().map(Path::toString).toList()),
                 "raylab.cli.Main", "render", root.resolve(g.scene()).toString(), "-o", png.toString(),
                 "--compare", root.resolve(g.reference()).toString(), "--tolerance", Double.toString(g.tolerance()),
@@ -232,11 +371,16 @@ public final class MilestoneCheck {
             }
             SceneStatus s = switch (p.exitValue()) {
                 case 0 -> SceneStatus.MATCH;
-                case 3 -> SceneStatus.NOT_IMPLEMENTED;
+                case 3 -> last.contains("not implemented") ? SceneStatus.NOT_IMPLEMENTED : SceneStatus.ERROR;
                 case 1 -> last.startsWith("DIFFERS") ? SceneStatus.DIFFERS : SceneStatus.ERROR;
                 default -> SceneStatus.ERROR;
             };
-            return new SceneOutcome(g, s, last.isEmpty() ? "exit status " + p.exitValue() : last);
+            if (p.exitValue() == 3 && last.isEmpty()) {
+                return new SceneOutcome(g, SceneStatus.ERROR, "the render ran out of memory (1 GB): look for something"
+                        + " that grows with every ray, such as a list or an array allocated per hit and kept");
+            }
+            return new SceneOutcome(g, s, last.isEmpty() ? "exit status " + p.exitValue()
+                    : s == SceneStatus.ERROR ? Explain.renderFailure(last, studentFiles) : last);
         } catch (InterruptedException e) {
             Thread.currentThread().interrupt();
             return new SceneOutcome(g, SceneStatus.ERROR, "interrupted");

@@ -25,7 +25,7 @@ public record GradeReport(List<Milestone> milestones, List<String> accepted, Lis
     }
 
     static double round(double v) {
-        return Math.round(v * 10000) / 10000.0;
+        return Math.round(v * 100) / 100.0; // cents: every share is a whole number of cents
     }
 
     /** One milestone's result. */

@@ -20,6 +20,7 @@ import javax.imageio.ImageIO;
 
 import raylab.course.Assignment;
 import raylab.course.Assignments;
+import raylab.course.GradingPlan;
 import raylab.course.JavaBuild;
 import raylab.course.MilestoneBuild;
 import raylab.course.TestLauncher;
@@ -287,7 +288,7 @@ public final class Grader {
         List<String> hiddenClasses = classes.stream().filter(c -> !visibleClasses.contains(c)).toList();
         runTests(a, false, visibleClasses, expected, layers, setup, mdir, sandbox, got, notes);
         runTests(a, true, hiddenClasses, expected, layers, setup, mdir, sandbox, got, notes);
-        tests.addAll(scoreTests(a, setup, expected, got));
+        tests.addAll(scoreTests(a, setup, plan(a), expected, got));
         // Scenes.
         tests.addAll(gradeScenes(a, layers, setup, mdir, scenesCopy, sandbox));
         return new GradeReport.Milestone(a.id(), a.title(), notes.stream().map(this::withheld).toList(),
@@ -509,6 +510,11 @@ public final class Grader {
         return removed;
     }
 
+    /** The milestone's points and test names, as check and the handouts have them. */
+    private GradingPlan.Plan plan(Assignment a) throws IOException {
+        return GradingPlan.of(options.root().toAbsolutePath(), a);
+    }
+
     /** Visibility and kind of the test class. */
     private static Kind kindOf(Assignment a, String className) {
         String outer = GraderSetup.outer(className);
@@ -523,37 +529,59 @@ public final class Grader {
         return Kind.HIDDEN;
     }
 
-    /** Groups results per test method (parameterized invocations together) and scores them. */
-    private static List<GradeReport.Test> scoreTests(Assignment a, GraderSetup setup, List<TestResult> expected,
-            Map<String, TestResult> got) {
-        Map<String, List<TestResult>> groups = new LinkedHashMap<>();
-        for (TestResult e : expected) {
-            groups.computeIfAbsent(e.className() + "#" + e.method(), k -> new ArrayList<>()).add(e);
+    /**
+     * Groups results per test method (parameterized invocations together) and scores them: the
+     * points and names come from {@link GradingPlan} (display names, shares in whole cents, in
+     * the order of the test files), as in {@code raylab check} and the handouts.
+     */
+    private static List<GradeReport.Test> scoreTests(Assignment a, GraderSetup setup, GradingPlan.Plan plan,
+            List<TestResult> expected, Map<String, TestResult> got) {
+        Map<String, List<TestResult>> groups = GradingPlan.byMethod(expected);
+        Map<String, GradingPlan.Item> planned = new LinkedHashMap<>();
+        List<String> order = new ArrayList<>();
+        for (GradingPlan.Item i : plan.visible()) {
+            planned.put(i.key(), i);
+            order.add(i.key());
         }
-        long visibleCount = groups.values().stream().filter(g -> kindOf(a, g.get(0).className()) == Kind.VISIBLE).count();
-        long hiddenCount = groups.values().stream().filter(g -> kindOf(a, g.get(0).className()) == Kind.HIDDEN).count();
+        for (GradingPlan.Item i : plan.hidden()) {
+            planned.put(i.key(), i);
+            order.add(i.key());
+        }
+        // Shares over the groups that exist, in plan order (a test the plan does not know goes last).
+        java.util.Comparator<String> byPlan = java.util.Comparator.comparingInt(k -> {
+            int i = order.indexOf(k);
+            return i < 0 ? Integer.MAX_VALUE : i;
+        });
+        List<String> keys = new ArrayList<>(groups.keySet());
+        keys.sort(byPlan);
+        List<String> visibleKeys = keys.stream().filter(k -> kindOf(a, groups.get(k).get(0).className()) == Kind.VISIBLE).toList();
+        List<String> hiddenKeys = keys.stream().filter(k -> kindOf(a, groups.get(k).get(0).className()) == Kind.HIDDEN).toList();
+        long[] vs = GradingPlan.share(100L * a.tests().visiblePoints(), visibleKeys.size());
+        long[] hs = GradingPlan.share(100L * a.tests().hiddenPoints(), hiddenKeys.size());
         Map<String, DataCases.Case> cases = new LinkedHashMap<>();
         for (DataCases.Case c : setup.cases.getOrDefault(a.id(), List.of())) {
             cases.put(c.method(), c);
         }
         List<GradeReport.Test> out = new ArrayList<>();
-        for (List<TestResult> g : groups.values()) {
+        for (String key : keys) {
+            List<TestResult> g = groups.get(key);
             TestResult first = g.get(0);
             Kind kind = kindOf(a, first.className());
             double points;
             String visibility;
-            String name = simple(first.className()) + "." + first.method();
+            GradingPlan.Item item = planned.get(key);
+            String name = item != null ? item.name() : first.method();
             if (kind == Kind.VISIBLE) {
-                points = (double) a.tests().visiblePoints() / visibleCount;
+                points = vs[visibleKeys.indexOf(key)] / 100.0;
                 visibility = "visible";
             } else if (kind == Kind.HIDDEN) {
-                points = (double) a.tests().hiddenPoints() / hiddenCount;
+                points = hs[hiddenKeys.indexOf(key)] / 100.0;
                 visibility = a.tests().hiddenVisibility();
             } else {
                 DataCases.Case c = cases.get(first.method());
-                points = c == null ? 0 : c.points();
+                points = c == null ? 0 : Math.round(c.points() * 100) / 100.0;
                 visibility = c == null ? a.tests().hiddenVisibility() : c.visibility();
-                name = "case " + (c == null ? first.method() : c.name());
+                name = "data case: " + (c == null ? first.method() : c.name());
             }
             boolean passed = true;
             String message = "";
@@ -645,7 +673,7 @@ public final class Grader {
         copyScenes(scenesCopy, scenes);
         List<String> cmd = new ArrayList<>(box.wrapper());
         cmd.addAll(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
-                "-Xmx" + options.sceneHeapMb() + "m", "-Djava.awt.headless=true", "-XX:+DisableAttachMechanism",
+                "-Xmx" + options.sceneHeapMb() + "m", "-XX:+ExitOnOutOfMemoryError", "-Djava.awt.headless=true", "-XX:+DisableAttachMechanism",
                 "-XX:-UsePerfData", "--limit-modules", TestLauncher.CHILD_MODULES, "-cp",
                 String.join(java.io.File.pathSeparator, box.classPath()), "raylab.hidden.RenderMany"));
         List<Path> pngs = new ArrayList<>();
@@ -694,9 +722,12 @@ public final class Grader {
             sandbox.finish(box, p);
         }
         long ms = (System.nanoTime() - t0) / 1_000_000 / a.scenes().size();
+        // -XX:+ExitOnOutOfMemoryError ends the JVM with status 3 when the heap runs out.
+        boolean outOfMemory = p != null && !timedOut && !p.isAlive() && p.exitValue() == 3;
+        List<String> studentFiles = a.files().stream().map(Assignment.StudentFile::path).toList();
         for (int i = 0; i < a.scenes().size(); i++) {
             Assignment.GradedScene sc = a.scenes().get(i);
-            String name = "scene " + Path.of(sc.scene()).getFileName();
+            String name = sc.scene();
             byte[] refBytes = references.get(sc.reference());
             byte[] mine = images.get(i);
             String errLine = errors.get(i) == null ? "" : errors.get(i);
@@ -706,10 +737,13 @@ public final class Grader {
             if (refBytes == null) {
                 msg = "grader setup problem: no reference image " + sc.reference();
             } else if (mine == null || errors.get(i) != null) {
-                msg = !errLine.isEmpty() ? "the render failed: " + errLine
+                msg = !errLine.isEmpty() ? raylab.course.Explain.renderFailure(errLine, studentFiles)
+                        : outOfMemory ? "the render ran out of memory (" + options.sceneHeapMb()
+                                + " MB): look for something that grows with every ray, such as a list or an array"
+                                + " allocated per hit and kept"
                         : timedOut ? "the renders took longer than " + limit.toSeconds()
-                                + " s and were stopped (an endless loop?)"
-                        : "no image was rendered (the render JVM ended early: System.exit, a crash or out of memory)";
+                                + " s and were stopped (an endless loop, or far too slow?)"
+                        : "no image was rendered (the render JVM ended early: System.exit or a crash)";
                 shown = new GradeReport.Images(null, refBytes, null, "");
             } else {
                 try {
@@ -723,7 +757,7 @@ public final class Grader {
                     String metric = c.summary() + "; allowed: " + String.format(java.util.Locale.ROOT, "%.3f%%",
                             100 * sc.tolerance());
                     msg = passed ? "" : "the image differs from the reference: " + metric
-                            + " (open report.html to see where)";
+                            + " (your render, the reference and the difference are shown side by side)";
                     shown = new GradeReport.Images(mine, refBytes, png(c.diff()), metric);
                 } catch (IOException | RuntimeException e) {
                     msg = "the rendered image could not be compared: " + e.getMessage();
@@ -783,14 +817,14 @@ public final class Grader {
     }
 
     /** Every graded item of a milestone at zero, with one explanation. */
-    private static GradeReport.Milestone zeroed(Assignment a, GraderSetup setup, String why) {
+    private GradeReport.Milestone zeroed(Assignment a, GraderSetup setup, String why) throws IOException {
         List<GradeReport.Test> tests = new ArrayList<>();
-        for (GradeReport.Test t : scoreTests(a, setup, setup.expected.getOrDefault(a.id(), List.of()), Map.of())) {
+        for (GradeReport.Test t : scoreTests(a, setup, plan(a), setup.expected.getOrDefault(a.id(), List.of()), Map.of())) {
             tests.add(new GradeReport.Test(t.milestone(), t.name(), t.kind(), t.maxScore(), 0, false, why, "",
                     t.visibility(), 0, t.file(), null));
         }
         for (Assignment.GradedScene sc : a.scenes()) {
-            tests.add(new GradeReport.Test(a.id(), "scene " + Path.of(sc.scene()).getFileName(), Kind.SCENE,
+            tests.add(new GradeReport.Test(a.id(), sc.scene(), Kind.SCENE,
                     sc.points(), 0, false, why, "", "visible", 0, sc.scene(), null));
         }
         return new GradeReport.Milestone(a.id(), a.title(), List.of(why), tests);

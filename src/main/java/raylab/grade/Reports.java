@@ -93,12 +93,19 @@ public final class Reports {
         return b.toString();
     }
 
-    /** Gradescope's results.json. */
+    /**
+     * Gradescope's results.json. The top-level {@code output} is HTML ({@code output_format:
+     * "html"} in Gradescope's autograder specification): scores, each scene's three images and
+     * every failed visible test's message, see {@link HtmlReport}. Each test's own output is
+     * text. Scores are rounded to cents; a milestone's tests add up to its points exactly.
+     */
     public static String gradescope(GradeReport r) throws IOException {
         Map<String, Object> root = new LinkedHashMap<>();
-        root.put("score", r.score());
+        root.put("score", GradeReport.round(r.score()));
         root.put("execution_time", Math.round(r.seconds()));
-        root.put("output", summary(r));
+        root.put("output", HtmlReport.forStudents(r));
+        root.put("output_format", "html");
+        root.put("test_output_format", "text");
         root.put("visibility", "visible");
         root.put("stdout_visibility", "hidden");
         List<Map<String, Object>> tests = new ArrayList<>();
@@ -109,17 +116,18 @@ public final class Reports {
             for (GradeReport.Test t : m.tests()) {
                 ti++;
                 Map<String, Object> j = new LinkedHashMap<>();
-                j.put("name", m.id() + ": " + t.name() + " (" + t.kind().label() + ")");
+                j.put("name", m.id() + ": " + t.name() + (t.kind() == Kind.HIDDEN ? " (hidden test)" : ""));
                 j.put("number", mi + "." + ti);
-                j.put("score", t.score());
-                j.put("max_score", t.maxScore());
+                j.put("score", GradeReport.round(t.score()));
+                j.put("max_score", GradeReport.round(t.maxScore()));
                 j.put("status", t.passed() ? "passed" : "failed");
                 String out = t.passed() ? "" : t.message();
                 if (t.images() != null && !t.images().metric().isEmpty() && t.passed()) {
                     out = t.images().metric();
                 }
                 if (!t.output().isBlank()) {
-                    out += (out.isEmpty() ? "" : "\n\n") + "Output:\n" + t.output();
+                    out += (out.isEmpty() ? "" : "\n\n") + (t.output().contains("more bytes of output dropped")
+                            ? "Output (the output past the cap was dropped):\n" : "Output:\n") + t.output();
                 }
                 j.put("output", out);
                 j.put("tags", List.of(m.id(), t.kind().label()));
@@ -235,78 +243,8 @@ public final class Reports {
         return s.length() <= n ? s : s.substring(0, n - 3) + "...";
     }
 
-    private static String dataUri(byte[] png) {
-        return png == null ? null : "data:image/png;base64," + Base64.getEncoder().encodeToString(png);
-    }
-
-    /** One self-contained HTML page: per milestone the tests and messages, per scene three images. */
+    /** One self-contained HTML page for instructors: everything, see {@link HtmlReport}. */
     public static String html(GradeReport r) {
-        StringBuilder b = new StringBuilder();
-        b.append("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>raylab grade: ")
-                .append(fmt(r.score())).append(" / ").append(fmt(r.maxScore())).append("</title>\n<style>\n")
-                .append("body{font-family:sans-serif;margin:2em;max-width:1100px}table{border-collapse:collapse;width:100%}")
-                .append("td,th{border:1px solid #ccc;padding:4px 6px;vertical-align:top;text-align:left}")
-                .append(".pass{color:#16702e}.fail{color:#b00020}pre{white-space:pre-wrap;margin:0;font-size:90%}")
-                .append("figure{display:inline-block;margin:4px}img{image-rendering:pixelated;max-width:340px;border:1px solid #999}")
-                .append("</style></head><body>\n");
-        b.append("<h1>Score ").append(fmt(r.score())).append(" / ").append(fmt(r.maxScore())).append("</h1>\n");
-        b.append("<table><tr><th>milestone</th><th>score</th><th>title</th></tr>\n");
-        for (GradeReport.Milestone m : r.milestones()) {
-            b.append("<tr><td><a href=\"#").append(xml(m.id())).append("\">").append(xml(m.id())).append("</a></td><td>")
-                    .append(fmt(m.score())).append(" / ").append(fmt(m.maxScore())).append("</td><td>")
-                    .append(xml(m.title())).append("</td></tr>\n");
-        }
-        b.append("</table>\n");
-        if (!r.notes().isEmpty() || !r.ignored().isEmpty() || !r.accepted().isEmpty()) {
-            b.append("<h2>Submission</h2><pre>");
-            r.accepted().forEach(a -> b.append("graded: ").append(xml(a)).append('\n'));
-            r.ignored().forEach(a -> b.append("ignored: ").append(xml(a)).append('\n'));
-            r.notes().forEach(a -> b.append(xml(a)).append('\n'));
-            b.append("</pre>\n");
-        }
-        for (GradeReport.Milestone m : r.milestones()) {
-            b.append("<h2 id=\"").append(xml(m.id())).append("\">").append(xml(m.id())).append(": ").append(xml(m.title()))
-                    .append(" (").append(fmt(m.score())).append(" / ").append(fmt(m.maxScore())).append(")</h2>\n");
-            for (String n : m.notes()) {
-                b.append("<pre class=\"fail\">").append(xml(n)).append("</pre>\n");
-            }
-            b.append("<table><tr><th>test</th><th>kind</th><th>points</th><th>result</th></tr>\n");
-            for (GradeReport.Test t : m.tests()) {
-                b.append("<tr><td>").append(xml(t.name())).append("</td><td>").append(t.kind().label())
-                        .append(t.kind() == Kind.HIDDEN ? " (" + xml(t.visibility()) + ")" : "").append("</td><td>")
-                        .append(fmt(t.score())).append(" / ").append(fmt(t.maxScore())).append("</td><td class=\"")
-                        .append(t.passed() ? "pass\">pass" : "fail\">fail");
-                if (!t.passed()) {
-                    b.append("<pre>").append(xml(t.message())).append("</pre>");
-                }
-                if (!t.output().isBlank()) {
-                    b.append("<details><summary>output</summary><pre>").append(xml(t.output())).append("</pre></details>");
-                }
-                GradeReport.Images im = t.images();
-                if (im != null) {
-                    if (!im.metric().isEmpty()) {
-                        b.append("<div>").append(xml(im.metric())).append("</div>");
-                    }
-                    figure(b, "your render", im.student());
-                    figure(b, "reference", im.reference());
-                    figure(b, "difference (heatmap)", im.diff());
-                }
-                b.append("</td></tr>\n");
-            }
-            b.append("</table>\n");
-        }
-        b.append("<p>Graded in ").append(String.format(Locale.ROOT, "%.1f", r.seconds())).append(" s.</p></body></html>\n");
-        return b.toString();
-    }
-
-    private static void figure(StringBuilder b, String caption, byte[] png) {
-        String uri = dataUri(png);
-        b.append("<figure>");
-        if (uri == null) {
-            b.append("<div style=\"width:200px;height:60px;border:1px dashed #999\">(none)</div>");
-        } else {
-            b.append("<img alt=\"").append(caption).append("\" src=\"").append(uri).append("\">");
-        }
-        b.append("<figcaption>").append(caption).append("</figcaption></figure>");
+        return HtmlReport.forInstructors(r);
     }
 }

@@ -74,8 +74,8 @@ public final class ImageCompare {
         return new Result(w, h, rmse, max, different, diff);
     }
 
-    /** Black → red → yellow → white for s from 0 to 1. */
-    static int heat(double s) {
+    /** Black → red → yellow → white for s from 0 to 1 (also drawn as the reports' legend). */
+    public static int heat(double s) {
         double r = Math.min(1, 3 * s);
         double g = Math.max(0, Math.min(1, 3 * s - 1));
         double b = Math.max(0, Math.min(1, 3 * s - 2));

@@ -29,6 +29,7 @@ import com.fasterxml.jackson.databind.node.ObjectNode;
 
 import raylab.course.Assignment;
 import raylab.course.Assignments;
+import raylab.course.GradingPlan;
 import raylab.course.SolutionRegions;
 
 /**
@@ -66,6 +67,7 @@ public final class Release {
         }
         SortedMap<String, byte[]> out = new TreeMap<>();
         List<String> stubbed = new ArrayList<>();
+        boolean anyVisibleCase = false;
         for (String rel : projectFiles(root)) {
             boolean wanted = ReleaseSpec.matchesAny(spec.include(), rel) || visibleTests.contains(rel);
             if (!wanted || ReleaseSpec.matchesAny(spec.exclude(), rel) || ReleaseSpec.matchesAny(spec.never(), rel)) {
@@ -75,15 +77,34 @@ public final class Release {
                 continue; // generated below
             }
             byte[] bytes = Files.readAllBytes(root.resolve(rel));
-            if (rel.matches("assignments/[^/]+/assignment\\.json")) {
+            Assignment owner = null;
+            if (rel.matches("assignments/[^/]+/(assignment\\.json|README\\.md)")) {
                 String folder = rel.substring(0, rel.lastIndexOf('/'));
-                double casePoints = 0;
                 for (Assignment a : assignments.all()) {
                     if (a.folder().toString().replace('\\', '/').equals(folder)) {
-                        casePoints = Assignments.casePoints(root, a);
+                        owner = a;
                     }
                 }
-                bytes = withoutHiddenTests(rel, bytes, casePoints);
+            }
+            if (owner != null && rel.endsWith("/assignment.json")) {
+                List<GradingPlan.CaseInfo> cases = GradingPlan.cases(root, owner);
+                double hiddenCasePoints = cases.stream().filter(c -> !c.visibility().equals("visible"))
+                        .mapToDouble(GradingPlan.CaseInfo::points).sum();
+                List<String> visibleFiles = new ArrayList<>();
+                for (String caseFile : owner.cases()) {
+                    String path = owner.folder().toString().replace('\\', '/') + "/" + caseFile;
+                    byte[] visible = visibleCases(root.resolve(path));
+                    if (visible != null) {
+                        visibleFiles.add(caseFile);
+                        out.put(path, visible);
+                        anyVisibleCase = true;
+                    }
+                }
+                bytes = withoutHiddenTests(rel, bytes, hiddenCasePoints, visibleFiles);
+            } else if (owner != null && rel.endsWith("/README.md")) {
+                // The grading table and the total: from assignment.json, never by hand.
+                String text = new String(bytes, StandardCharsets.UTF_8);
+                bytes = HandoutTable.update(text, GradingPlan.of(root, owner)).getBytes(StandardCharsets.UTF_8);
             } else if (rel.endsWith(".java")) {
                 String text = new String(bytes, StandardCharsets.UTF_8);
                 if (SolutionRegions.hasRegions(text) || assignments.ownerOf(rel).isPresent()) {
@@ -102,6 +123,10 @@ public final class Release {
                 }
             }
         }
+        if (anyVisibleCase) {
+            // Visible data cases run in ./raylab check, with the grader's case checker.
+            out.put(CASE_CHECK_STARTER, Files.readAllBytes(root.resolve(CASE_CHECK)));
+        }
         out.put("README.md", StarterReadme.render(root, spec.readmeTemplate(), assignments)
                 .getBytes(StandardCharsets.UTF_8));
         Set<String> exec = new HashSet<>();
@@ -111,6 +136,26 @@ public final class Release {
             }
         }
         return new Tree(out, Set.copyOf(exec), List.copyOf(stubbed), assignments.ids());
+    }
+
+    /** The grader's data-case checker, and where the starter gets a copy when some case is visible. */
+    static final String CASE_CHECK = "grader/tests/raylab/cases/CaseCheck.java";
+    static final String CASE_CHECK_STARTER = "src/test/java/raylab/cases/CaseCheck.java";
+
+    /** A case file with only its visible cases, in one fixed layout; null when none is visible. */
+    static byte[] visibleCases(Path file) throws IOException {
+        ObjectMapper json = new ObjectMapper();
+        JsonNode n = json.readTree(file.toFile());
+        com.fasterxml.jackson.databind.node.ArrayNode keep = json.createArrayNode();
+        for (JsonNode c : n.isArray() ? n : List.of(n)) {
+            if ("visible".equals(c.path("visibility").asText())) {
+                keep.add(c);
+            }
+        }
+        if (keep.isEmpty()) {
+            return null;
+        }
+        return (json.writerWithDefaultPrettyPrinter().writeValueAsString(keep) + "\n").getBytes(StandardCharsets.UTF_8);
     }
 
     /** The student's version of a file with solution regions; checks that they belong to its milestone. */
@@ -150,6 +195,15 @@ public final class Release {
      * points (the case files are grader data and are not shipped).
      */
     static byte[] withoutHiddenTests(String rel, byte[] bytes, double casePoints) throws IOException {
+        return withoutHiddenTests(rel, bytes, casePoints, List.of());
+    }
+
+    /**
+     * As above, keeping the case files that hold visible cases (written with only those cases)
+     * and counting the hidden cases' points as hidden points.
+     */
+    static byte[] withoutHiddenTests(String rel, byte[] bytes, double casePoints, List<String> visibleCaseFiles)
+            throws IOException {
         ObjectMapper json = new ObjectMapper();
         JsonNode node = json.readTree(bytes);
         if (!(node instanceof ObjectNode obj)) {
@@ -166,6 +220,10 @@ public final class Release {
             }
         }
         obj.remove("cases");
+        if (!visibleCaseFiles.isEmpty()) {
+            com.fasterxml.jackson.databind.node.ArrayNode c = obj.putArray("cases");
+            visibleCaseFiles.forEach(c::add);
+        }
         DefaultPrettyPrinter pretty = new DefaultPrettyPrinter()
                 .withSeparators(Separators.createDefaultInstance()
                         .withObjectFieldValueSpacing(Separators.Spacing.AFTER))

@@ -286,6 +286,19 @@ public final class ReleaseVerifier {
         out.add(Check.of("assignment descriptions readable, without hidden tests, their files present", desc,
                 assignments.ids().size() + " milestones"));
 
+        List<String> tables = new ArrayList<>();
+        for (Assignment a : assignments.all()) {
+            Path handout = starter.resolve(a.folder().toString()).resolve("README.md");
+            if (Files.isRegularFile(handout)) {
+                String text = Files.readString(handout, StandardCharsets.UTF_8);
+                if (!text.equals(HandoutTable.update(text, raylab.course.GradingPlan.of(root, a)))) {
+                    tables.add(a.folder() + "/README.md");
+                }
+            }
+        }
+        out.add(Check.of("handout grading tables and totals agree with assignment.json", tables,
+                assignments.ids().size() + " handouts"));
+
         List<String> readme = new ArrayList<>();
         Path readmeFile = starter.resolve("README.md");
         if (!Files.isRegularFile(readmeFile)) {
@@ -357,13 +370,22 @@ public final class ReleaseVerifier {
         for (String id : assignments.ids()) {
             counts.put(id, 0);
         }
-        for (TestResult r : expected) {
+        for (List<TestResult> g : raylab.course.GradingPlan.byMethod(expected).values()) {
+            TestResult r = g.get(0);
             String id = milestoneOf(r);
             if (id == null) {
                 problems.add(r.className() + " is a test of no milestone");
-            } else {
-                counts.merge(id, 1, Integer::sum);
             }
+        }
+        // Counted as everywhere else: one test per test method, from the test files.
+        for (Assignment a : assignments.all()) {
+            int n = 0;
+            for (String v : a.tests().visible()) {
+                if (Files.isRegularFile(starter.resolve(v))) {
+                    n += raylab.course.GradingPlan.testMethods(starter.resolve(v), raylab.course.GradingPlan.className(v)).size();
+                }
+            }
+            counts.put(a.id(), n);
         }
         counts.forEach((id, n) -> {
             if (n == 0) {

@@ -1,0 +1,162 @@
+package raylab.cli;
+
+import java.io.PrintWriter;
+import java.util.ArrayList;
+import java.util.List;
+
+import raylab.math.Color;
+import raylab.math.Vec3;
+import raylab.ray.IntersectionRecord;
+import raylab.ray.Ray;
+import raylab.surface.Group;
+import raylab.surface.Mesh;
+import raylab.surface.Sphere;
+import raylab.surface.Surface;
+
+/**
+ * The contract every {@code intersect} follows (handout 1), checked by {@code raylab trace} on the
+ * surfaces one ray meets: the recorded t lies in [tMin, tMax]; a record is only overwritten by a
+ * closer hit; the normal is unit length and a sphere's points out of it; true is returned exactly
+ * when the record is written; no NaN anywhere. A broken rule is printed on the line where it
+ * happens, after {@value #MARK}.
+ */
+final class ContractCheck {
+    static final String MARK = "<-- BROKEN RULE: ";
+    /** How far a unit normal's length may be from 1. */
+    static final double UNIT = 1e-6;
+    /** At most this many surfaces of a mesh are listed. */
+    private static final int MAX_LINES = 20;
+
+    private ContractCheck() {
+    }
+
+    /** "   <-- BROKEN RULE: rule", or "" when there is no rule. */
+    static String flag(String rule) {
+        return rule == null || rule.isEmpty() ? "" : "   " + MARK + rule;
+    }
+
+    /** The range rule for a recorded t, or null when it holds. */
+    static String rangeRule(Ray ray, double t) {
+        if (Double.isNaN(t)) {
+            return "t is NaN: a recorded t must be a number in [tMin, tMax] (a negative discriminant?)";
+        }
+        if (ray.inRange(t)) {
+            return null;
+        }
+        return "the recorded t = " + TraceCommand.num(t) + " must lie in [tMin, tMax] = [" + TraceCommand.num(ray.tMin)
+                + ", " + TraceCommand.num(ray.tMax) + "]" + (t < ray.tMin ? ": a hit behind the ray's start does not count"
+                        : ": a hit beyond tMax does not count");
+    }
+
+    /** The unit-length rule for a normal, or null when it holds. */
+    static String unitRule(Vec3 n) {
+        if (n == null) {
+            return "no normal was recorded: outRecord.set(t, point, normal, this)";
+        }
+        String nan = nanRule("the normal", n);
+        if (nan != null) {
+            return nan;
+        }
+        double len = n.length();
+        return Math.abs(len - 1) <= UNIT ? null
+                : "the normal must be unit length, its length is " + TraceCommand.num(len) + " (normalize it)";
+    }
+
+    static String nanRule(String what, Vec3 v) {
+        return v != null && (Double.isNaN(v.x) || Double.isNaN(v.y) || Double.isNaN(v.z))
+                ? what + " has NaN in it: no value may be NaN (a square root of a negative number? 0/0?)" : null;
+    }
+
+    static String nanRule(String what, Color c) {
+        return c != null && (Double.isNaN(c.r) || Double.isNaN(c.g) || Double.isNaN(c.b))
+                ? what + " has NaN in it: no value may be NaN (0/0? a normal of length 0?)" : null;
+    }
+
+    /**
+     * Asks each primitive of the scene in turn, as a group does, and prints those the ray meets
+     * (or that break a rule), each with the rules it breaks.
+     */
+    static void walk(List<Surface> surfaces, Ray ray, PrintWriter out) {
+        List<Surface> leaves = new ArrayList<>();
+        for (Surface s : surfaces) {
+            flatten(s, leaves);
+        }
+        IntersectionRecord rec = new IntersectionRecord();
+        List<String> lines = new ArrayList<>();
+        int broken = 0;
+        for (Surface s : leaves) {
+            IntersectionRecord before = new IntersectionRecord();
+            before.copyFrom(rec);
+            boolean returned;
+            try {
+                returned = s.intersect(rec, ray);
+            } catch (RuntimeException e) {
+                if (e instanceof raylab.course.NotImplemented) {
+                    throw e;
+                }
+                lines.add("    \"" + s.name() + "\": threw " + e + flag("intersect must not throw"));
+                broken++;
+                continue;
+            }
+            boolean wrote = Double.compare(rec.t, before.t) != 0 || rec.point != before.point || rec.normal != before.normal
+                    || rec.surface != before.surface;
+            if (!returned && !wrote) {
+                continue;
+            }
+            List<String> rules = new ArrayList<>();
+            if (returned != wrote) {
+                rules.add(returned ? "returned true without writing the record: return true exactly when you write it"
+                        : "wrote the record but returned false: return true exactly when you write it");
+            }
+            if (wrote) {
+                String range = rangeRule(ray, rec.t);
+                if (range != null) {
+                    rules.add(range);
+                }
+                if (before.hasHit() && !(rec.t < before.t)) {
+                    rules.add("the record held a closer hit (t = " + TraceCommand.num(before.t) + " on \""
+                            + before.surface.name() + "\"): write only when t < outRecord.t");
+                }
+                String unit = unitRule(rec.normal);
+                if (unit != null) {
+                    rules.add(unit);
+                }
+                String nan = nanRule("the point", rec.point);
+                if (nan != null) {
+                    rules.add(nan);
+                }
+                if (s instanceof Sphere sp && rec.normal != null && rec.point != null
+                        && rec.normal.dot(rec.point.minus(sp.center)) < 0) {
+                    rules.add("a sphere's normal points out of the sphere, (x - c)/R; this one points into it");
+                }
+            }
+            broken += rules.isEmpty() ? 0 : 1;
+            String what = wrote ? "recorded t = " + TraceCommand.num(rec.t) + ", normal " + TraceCommand.v(rec.normal == null
+                    ? new Vec3(Double.NaN, Double.NaN, Double.NaN) : rec.normal) : "returned true";
+            StringBuilder line = new StringBuilder("    \"" + s.name() + "\": " + what);
+            for (int i = 0; i < rules.size(); i++) {
+                line.append(i == 0 ? flag(rules.get(i)) : "; " + rules.get(i));
+            }
+            lines.add(line.toString());
+        }
+        if (lines.isEmpty()) {
+            return;
+        }
+        out.println("  surfaces asked in turn, as a group does (" + leaves.size() + ")" + (broken == 0
+                ? ": every rule of intersect holds" : ": " + broken + " broke a rule of intersect"));
+        lines.stream().limit(MAX_LINES).forEach(out::println);
+        if (lines.size() > MAX_LINES) {
+            out.println("    ... and " + (lines.size() - MAX_LINES) + " more");
+        }
+    }
+
+    private static void flatten(Surface s, List<Surface> out) {
+        if (s instanceof Group g) {
+            g.members().forEach(m -> flatten(m, out));
+        } else if (s instanceof Mesh m) {
+            out.addAll(m.triangles());
+        } else {
+            out.add(s);
+        }
+    }
+}

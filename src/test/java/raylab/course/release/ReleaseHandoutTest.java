@@ -1,0 +1,93 @@
+package raylab.course.release;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertFalse;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import java.io.IOException;
+import java.nio.charset.StandardCharsets;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.util.List;
+
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.io.TempDir;
+
+import com.fasterxml.jackson.databind.JsonNode;
+import com.fasterxml.jackson.databind.ObjectMapper;
+
+import raylab.course.Assignment;
+import raylab.course.Assignments;
+import raylab.course.GradingPlan;
+
+/**
+ * One source for points: a handout's title total and grading table come from assignment.json at
+ * release, so changing a milestone's points there changes the starter's handout with no other
+ * edit; visible data cases ship in the starter (hidden ones do not) with the case checker.
+ */
+class ReleaseHandoutTest {
+    @TempDir
+    Path dir;
+
+    @Test
+    void changingPointsInAssignmentJsonChangesTheHandoutAtTheNextRelease() throws IOException {
+        Path root = Path.of("").toAbsolutePath();
+        Path copy = dir.resolve("course");
+        for (String f : Release.projectFiles(root)) {
+            Path t = copy.resolve(f);
+            Files.createDirectories(t.getParent());
+            Files.copy(root.resolve(f), t);
+        }
+        Path json = copy.resolve("assignments/02-box/assignment.json");
+        String text = Files.readString(json);
+        assertTrue(text.contains("\"points\": 15,") && text.contains("\"visiblePoints\": 6,"), text);
+        Files.writeString(json, text.replace("\"points\": 15,", "\"points\": 18,")
+                .replace("\"visiblePoints\": 6,", "\"visiblePoints\": 9,"));
+        String handoutBefore = Files.readString(copy.resolve("assignments/02-box/README.md"));
+
+        Release.Tree tree = Release.build(copy);
+        String handout = new String(tree.files().get("assignments/02-box/README.md"), StandardCharsets.UTF_8);
+        assertTrue(handout.lines().findFirst().orElse("").endsWith("(18 points)"), handout.lines().findFirst().orElse(""));
+        int tests = GradingPlan.testMethods(copy.resolve("src/test/java/raylab/surface/BoxTest.java"),
+                "raylab.surface.BoxTest").size();
+        assertTrue(handout.contains("| visible tests (`BoxTest`, tag `box`): " + tests
+                + " tests, the points shared equally | 9 |"), handout);
+        assertTrue(handout.contains("| **total** | **18** |"), handout);
+        assertEquals(handoutBefore, Files.readString(copy.resolve("assignments/02-box/README.md")),
+                "no edit of the handout itself was needed");
+        // Everything but the table is the instructor's text.
+        assertTrue(handout.contains("## Classic blunders") || handout.contains("## The math"), "the handout's prose stays");
+
+        // Visible data cases ship (and only they), with the checker; the totals still add up in the starter.
+        String cases = new String(tree.files().get("assignments/01-sphere/cases/basic.json"), StandardCharsets.UTF_8);
+        JsonNode shipped = new ObjectMapper().readTree(cases);
+        List<GradingPlan.CaseInfo> all = GradingPlan.cases(copy, Assignments.load(copy).byId("sphere").orElseThrow());
+        long visible = all.stream().filter(c -> c.visibility().equals("visible")).count();
+        assertTrue(visible >= 1 && visible < all.size(), "sphere has visible and hidden cases");
+        assertEquals(visible, shipped.size());
+        for (JsonNode c : shipped) {
+            assertEquals("visible", c.get("visibility").asText());
+        }
+        assertTrue(tree.files().containsKey(Release.CASE_CHECK_STARTER), "the case checker ships");
+        assertFalse(tree.files().containsKey("assignments/02-box/cases/basic.json"), "a file of hidden cases does not ship");
+
+        Path starter = dir.resolve("starter");
+        for (var e : tree.files().entrySet()) {
+            Path t = starter.resolve(e.getKey());
+            Files.createDirectories(t.getParent());
+            Files.write(t, e.getValue());
+        }
+        Assignments s = Assignments.load(starter);
+        for (Assignment a : Assignments.load(copy).all()) {
+            Assignment b = s.byId(a.id()).orElseThrow();
+            assertEquals(a.points(), b.points());
+            GradingPlan.Plan inStarter = GradingPlan.of(starter, b);
+            GradingPlan.Plan inTree = GradingPlan.of(copy, a);
+            // (A data case's generated method is numbered among the cases of its tree, so keys may differ.)
+            assertEquals(inTree.visible().stream().map(i -> i.kind() + " " + i.name() + " " + i.cents() + " " + i.tolerance())
+                    .toList(), inStarter.visible().stream().map(i -> i.kind() + " " + i.name() + " " + i.cents() + " "
+                            + i.tolerance()).toList(), "students can run what the grader calls visible: " + a.id());
+            assertEquals(inTree.hiddenCents(), inStarter.hiddenCents(), a.id());
+        }
+    }
+}
