@@ -120,16 +120,26 @@ final class BvhNodes {
      */
     static double entry(int[] box, int k, double px, double py, double pz, double ix, double iy,
             double iz, int nx, int ny, int nz, double t0, double t1) {
+        return entry(box, k, px, py, pz, ix, iy, iz, ix * ROUND_UP, iy * ROUND_UP, iz * ROUND_UP, nx, ny, nz, t0, t1);
+    }
+
+    /**
+     * As above with the exit side's inverse direction already widened: ux = ix·(1 + 2γ3), and so
+     * on. (f − p)·ux rounds four times (1/d, the difference, the widening, the product), within
+     * γ4 &lt; 2γ3 of the exact exit distance, so the widened exit still bounds it from above.
+     */
+    static double entry(int[] box, int k, double px, double py, double pz, double ix, double iy,
+            double iz, double ux, double uy, double uz, int nx, int ny, int nz, double t0, double t1) {
         double a = (Float.intBitsToFloat(box[k + nx]) - px) * ix;
-        double b = (Float.intBitsToFloat(box[k + 3 - nx]) - px) * ix * ROUND_UP;
+        double b = (Float.intBitsToFloat(box[k + 3 - nx]) - px) * ux;
         t0 = a > t0 ? a : t0;
         t1 = b < t1 ? b : t1;
         a = (Float.intBitsToFloat(box[k + 1 + ny]) - py) * iy;
-        b = (Float.intBitsToFloat(box[k + 4 - ny]) - py) * iy * ROUND_UP;
+        b = (Float.intBitsToFloat(box[k + 4 - ny]) - py) * uy;
         t0 = a > t0 ? a : t0;
         t1 = b < t1 ? b : t1;
         a = (Float.intBitsToFloat(box[k + 2 + nz]) - pz) * iz;
-        b = (Float.intBitsToFloat(box[k + 5 - nz]) - pz) * iz * ROUND_UP;
+        b = (Float.intBitsToFloat(box[k + 5 - nz]) - pz) * uz;
         t0 = a > t0 ? a : t0;
         t1 = b < t1 ? b : t1;
         return t0 <= t1 ? t0 : Double.POSITIVE_INFINITY;

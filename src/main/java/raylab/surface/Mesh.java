@@ -188,6 +188,8 @@ public final class Mesh extends Surface {
         final double tMin = ray.tMin, tMax = ray.tMax;
         final double ix = 1.0 / dx, iy = 1.0 / dy, iz = 1.0 / dz;
         final int nx = ix < 0 ? 3 : 0, ny = iy < 0 ? 3 : 0, nz = iz < 0 ? 3 : 0;
+        final double ux = ix * BvhNodes.ROUND_UP, uy = iy * BvhNodes.ROUND_UP, uz = iz * BvhNodes.ROUND_UP;
+        final int negative = (nx != 0 ? 1 : 0) | (ny != 0 ? 2 : 0) | (nz != 0 ? 4 : 0);
         // Ray space of the watertight test, as in Triangle.intersect.
         final int kz = largestAxis(dx, dy, dz);
         final int kx = kz == 2 ? 0 : kz + 1;
@@ -238,11 +240,10 @@ public final class Mesh extends Surface {
                 }
             } else {
                 int k = BvhNodes.INNER * ref;
-                double tl = BvhNodes.entry(inner, k, px, py, pz, ix, iy, iz, nx, ny, nz, tMin, t1);
-                double tr = BvhNodes.entry(inner, k + 6, px, py, pz, ix, iy, iz, nx, ny, nz, tMin, t1);
+                double tl = BvhNodes.entry(inner, k, px, py, pz, ix, iy, iz, ux, uy, uz, nx, ny, nz, tMin, t1);
+                double tr = BvhNodes.entry(inner, k + 6, px, py, pz, ix, iy, iz, ux, uy, uz, nx, ny, nz, tMin, t1);
                 int packed = inner[k + 13];
-                int axis = packed & 3;
-                boolean rightFirst = (axis == 0 ? nx : axis == 1 ? ny : nz) != 0;
+                boolean rightFirst = (negative >> (packed & 3) & 1) != 0;
                 int near = rightFirst ? packed >> 2 : inner[k + 12];
                 int far = rightFirst ? inner[k + 12] : packed >> 2;
                 double tNear = rightFirst ? tr : tl;

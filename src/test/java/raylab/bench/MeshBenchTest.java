@@ -1,0 +1,71 @@
+package raylab.bench;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import java.io.PrintWriter;
+import java.io.StringWriter;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.util.ArrayList;
+import java.util.List;
+
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.io.TempDir;
+
+import raylab.cli.Main;
+import raylab.scene.ObjLoader;
+import raylab.surface.Group;
+import raylab.surface.Mesh;
+import raylab.surface.Surface;
+
+/**
+ * The bench's rays (the Embree harness's camera) count the same hits and blocked shadow rays
+ * through the packed mesh as through a plain Group of its triangles; the procedural mesh equals
+ * the harness's OBJ file; {@code raylab bench --obj} prints one JSON line with those counts.
+ * (Counts only: timings are never asserted.)
+ */
+class MeshBenchTest {
+    static String obj(double[] tris) {
+        StringBuilder s = new StringBuilder();
+        for (int i = 0; i < tris.length; i += 3) {
+            s.append("v ").append(tris[i]).append(' ').append(tris[i + 1]).append(' ').append(tris[i + 2]).append('\n');
+        }
+        for (int i = 0; i < tris.length / 9; i++) {
+            s.append("f ").append(3 * i + 1).append(' ').append(3 * i + 2).append(' ').append(3 * i + 3).append('\n');
+        }
+        return s.toString();
+    }
+
+    @Test
+    void packedMeshAndAGroupOfTrianglesCountTheSameHits() {
+        double[] tris = Icosphere.triangles(3);
+        assertEquals(20 * 64, tris.length / 9, "20·4^L triangles");
+        Mesh mesh = new Mesh(tris, MeshBench.GREY, "ico3");
+        Group group = new Group(new ArrayList<Surface>(mesh.triangles()), "group");
+        MeshBench.Pass fast = new MeshBench(mesh, 64, 48).run(2, true);
+        MeshBench.Pass slow = new MeshBench(group, 64, 48).run(1, true);
+        assertEquals(slow.hits(), fast.hits(), "primary hits");
+        assertEquals(slow.occluded(), fast.occluded(), "blocked shadow rays");
+        assertEquals(64 * 48 + slow.hits(), fast.rays(), "rays: primary plus one shadow ray per hit");
+        assertTrue(fast.hits() > 64 * 48 / 4 && fast.occluded() > 0, "the view sees the mesh and its shadows: " + fast);
+    }
+
+    @Test
+    void benchObjPrintsTheCountsAsJson(@TempDir Path tmp) throws Exception {
+        Path file = tmp.resolve("ico2.obj");
+        Files.writeString(file, obj(Icosphere.triangles(2)));
+        double[] tris = ObjLoader.read(file, "ico2.obj").triangleVertices();
+        MeshBench.Pass expected = new MeshBench(new Mesh(tris, MeshBench.GREY, "m"), 40, 30).run(1, true);
+        StringWriter out = new StringWriter();
+        StringWriter err = new StringWriter();
+        int status = Main.run(new PrintWriter(out, true), new PrintWriter(err, true), "bench", "--obj", file.toString(), "--size", "40x30", "--runs", "1", "--warmup", "0",
+                "--threads", "2");
+        assertEquals(0, status, out + "\n" + err);
+        List<String> lines = out.toString().lines().toList();
+        String json = lines.get(lines.size() - 1);
+        assertTrue(json.startsWith("{\"triangles\":320,\"threads\":2,"), json);
+        assertTrue(json.contains("\"hits\":" + expected.hits() + ","), json + " vs " + expected);
+        assertTrue(json.endsWith("\"occluded\":" + expected.occluded() + "}"), json + " vs " + expected);
+    }
+}
