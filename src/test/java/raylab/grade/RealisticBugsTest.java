@@ -119,7 +119,7 @@ class RealisticBugsTest {
     void naiveSlabsCloseShadowEpsilonLateClampAndAStackInspectingSphereLosePoints() throws IOException {
         JsonNode r = grade(submission("bugs3"), "sphere", "box", "shadows", "phong");
         // The lecture's slabs as written: rays in a face's plane (orthographic views) miss.
-        assertLost(r, "box", 1.5);
+        assertLost(r, "box", 3);
         assertSceneFails(r, "box", "boxes-front.json");
         // A fixed offset of 0.01 skips blockers close to the point: small scenes lose their shadows.
         assertLost(r, "shadows", 1.5);
@@ -136,10 +136,11 @@ class RealisticBugsTest {
     }
 
     @Test
-    void aBoxIgnoringTMaxLosesPointsAndItsLampScene() throws IOException {
+    void aBoxIgnoringTMaxLosesPoints() throws IOException {
         JsonNode r = grade(submission("bugs4"), "box");
-        // Shadow rays end at the light: a box beyond the lamp must not darken the room.
-        assertLost(r, "box", 2);
-        assertSceneFails(r, "box", "boxes-lamp.json");
+        // Shadow rays end at the light: a box beyond the lamp must not darken the room. Only
+        // shadow rays have a finite tMax, and the box milestone's scenes must render before the
+        // shadows milestone is written, so tests and a data case show it, not a box scene.
+        assertLost(r, "box", 1.5);
     }
 }
