@@ -20,6 +20,10 @@ public final class Main implements Runnable {
     public static final int BAD_INPUT = 2;
     public static final int NOT_IMPLEMENTED = 3;
 
+    private static final java.util.regex.Pattern BAD_PATH = java.util.regex.Pattern.compile(
+            "cannot convert '(.*)' to interface java\\.nio\\.file\\.Path \\(java\\.nio\\.file\\."
+                    + "InvalidPathException: ([^:]*)", java.util.regex.Pattern.DOTALL);
+
     @Override
     public void run() {
         new CommandLine(this).usage(System.out);
@@ -56,6 +60,16 @@ public final class Main implements Runnable {
         cl.setExecutionExceptionHandler(new Errors());
         cl.setParameterExceptionHandler((ex, args) -> {
             PrintWriter err = ex.getCommandLine().getErr();
+            // picocli keeps only the text of a failed conversion: a file name that the locale cannot
+            // encode (LANG=C) or that holds a NUL character.
+            java.util.regex.Matcher bad = BAD_PATH.matcher(String.valueOf(ex.getMessage()));
+            if (bad.find()) {
+                err.println("raylab: " + Errors.oneLine(bad.group(1)) + ": not a usable file name ("
+                        + Errors.oneLine(bad.group(2)) + "; the file-name encoding is "
+                        + System.getProperty("sun.jnu.encoding") + "); use ASCII names or a UTF-8 locale"
+                        + " (LANG=C.UTF-8)");
+                return BAD_INPUT;
+            }
             err.println("raylab: " + Errors.oneLine(ex.getMessage()) + " (see: "
                     + ex.getCommandLine().getCommandSpec().qualifiedName() + " --help)");
             return BAD_INPUT;

@@ -186,4 +186,19 @@ class BadInputCliTest {
         assertTrue(e.contains("$.surfaces[0].file: cannot use \"b") && e.contains("file-name encoding"), e);
         assertFalse(e.contains("internal error"), e);
     }
+
+    @Test
+    void aNonAsciiSceneNameUnderThePosixLocaleIsOneLine() throws Exception {
+        Path out = dir.resolve("stdout.txt");
+        Path err = dir.resolve("stderr.txt");
+        Process p = ChildJvm.start(List.of(), Map.of("LANG", "C", "LC_ALL", "C"), out, err, "render",
+                "szene-\u00fc.json", "-o", dir.resolve("s.png").toString());
+        assertTrue(p.waitFor(120, TimeUnit.SECONDS), "finished");
+        String e = Files.readString(err, StandardCharsets.ISO_8859_1).strip();
+        assertEquals(2, p.exitValue(), e);
+        assertEquals(1, e.lines().count(), e);
+        assertTrue(e.startsWith("raylab: szene-") && (e.contains("not a usable file name")
+                || e.contains("no such file")), e); // "no such file" where the JVM maps the name
+        assertFalse(e.contains("Exception"), e);
+    }
 }
