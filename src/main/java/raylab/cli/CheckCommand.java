@@ -19,7 +19,8 @@ import raylab.course.MilestoneCheck;
 /** {@code raylab check [MILESTONE]}: runs the visible tests, renders the scenes, says what to do next. */
 @Command(name = "check", mixinStandardHelpOptions = true,
         description = {"Run the visible tests of one milestone (or all) and compare its scenes with the references.",
-            "Ends with a table: tests passed, scenes matching, and what to look at next."},
+            "Shows the first failures in full (message and hint) under their handout names, a points table with the",
+            "autograder's points for everything you can run here, and a table: tests passed, scenes matching, what next."},
         exitCodeListHeading = "%nExit status:%n",
         exitCodeList = {"0:every test passed and every scene matched", "1:something did not",
             "2:unknown milestone, or not run from the project folder"})

@@ -31,7 +31,9 @@ import raylab.scene.SceneLoader;
 /** {@code raylab trace SCENE.json --pixel X Y}: the ray tree of one pixel, step by step. */
 @Command(name = "trace", mixinStandardHelpOptions = true,
         description = {"Print the ray tree of one pixel, step by step.",
-            "The eye ray, its hit, each light's shadow ray and shading terms, and the final colour. Pixel (0, 0) is the top-left corner."})
+            "The eye ray, its hit, each light's shadow ray and shading terms, and the final colour. Pixel (0, 0) is the top-left corner.",
+            "A broken rule of intersect (t outside [tMin, tMax], a farther hit over a closer one, a normal not unit length or",
+            "into a sphere, NaN) is marked on its line with <-- BROKEN RULE."})
 public final class TraceCommand implements Callable<Integer> {
     @Spec
     CommandSpec spec;
