@@ -5,7 +5,7 @@ import static org.junit.jupiter.api.Assertions.fail;
 import com.fasterxml.jackson.databind.JsonNode;
 import com.fasterxml.jackson.databind.ObjectMapper;
 
-import raylab.hidden.Calls;
+import raylab.testing.Check;
 import raylab.material.FlatColor;
 import raylab.math.Color;
 import raylab.math.Vec3;
@@ -39,7 +39,7 @@ public final class CaseCheck {
             rec.t = prior.asDouble();
         }
         double before = rec.t;
-        boolean hit = Calls.intersect(s, rec, ray);
+        boolean hit = Check.intersect(s, rec, ray);
         JsonNode e = c.get("expect");
         double tol = num(e.get("tolerance"), 1e-6);
         String ctx = "\n  case: " + c.path("name").asText() + "\n  ray: " + ray + "\n  surface: " + c.get("surface")
