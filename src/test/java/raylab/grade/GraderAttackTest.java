@@ -151,6 +151,11 @@ class GraderAttackTest {
         assertFalse(Files.exists(Path.of("/tmp/raylab-attack-" + run.tag() + ".txt")), "nothing left in /tmp");
     }
 
+    /** The instructors' report.html (the student's results.json leaves the sandbox line out). */
+    private static String instructorsReport(Run run) throws IOException {
+        return Files.readString(run.out().resolve("report.html"));
+    }
+
     private static boolean namespaces() {
         return Sandbox.namespacesWork(Sandbox.isRoot());
     }
@@ -159,7 +164,7 @@ class GraderAttackTest {
     void namespaceSandboxWithTheSandboxUser() throws Exception {
         assumeTrue(namespaces(), "unshare cannot create namespaces here");
         Run run = attack("namespace", GraderTest.sandboxUser());
-        assertTrue(run.results().get("output").asText().contains("sandbox: namespaces"), run.results().get("output").asText());
+        assertTrue(instructorsReport(run).contains("sandbox: namespaces"), "the instructors' report names the sandbox mode");
         assertFailClosed(run);
         assertGraderFilesOutOfReach(run);
         assertIsolated(run);
@@ -179,7 +184,7 @@ class GraderAttackTest {
         assumeTrue(Sandbox.isRoot() && Files.readString(Path.of("/etc/passwd")).contains("\n" + GraderTest.sandboxUser() + ":"),
                 "needs root and the user " + GraderTest.sandboxUser() + " (.ci/run creates it)");
         Run run = attack("user", GraderTest.sandboxUser());
-        assertTrue(run.results().get("output").asText().contains("sandbox: user"), run.results().get("output").asText());
+        assertTrue(instructorsReport(run).contains("sandbox: user"), "the instructors' report names the sandbox mode");
         assertFailClosed(run);
         assertGraderFilesOutOfReach(run);
         // Not isolated in this mode (README): the network and the shared /tmp.
@@ -189,7 +194,7 @@ class GraderAttackTest {
     @Test
     void noSandboxAtAll() throws Exception {
         Run run = attack("none", "");
-        assertTrue(run.results().get("output").asText().contains("sandbox: none"), run.results().get("output").asText());
+        assertTrue(instructorsReport(run).contains("sandbox: none"), "the instructors' report names the sandbox mode");
         // Not isolated in this mode (README): network, /tmp, the grader's files; the reference
         // classes in the cache are readable, so the score is not asserted here. What the
         // submission copied out of the hidden classes is withheld from visible outputs.

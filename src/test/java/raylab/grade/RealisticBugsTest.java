@@ -107,7 +107,7 @@ class RealisticBugsTest {
     /** Asserts that the named scene of milestone id scored 0. */
     private static void assertSceneFails(JsonNode r, String id, String sceneFile) {
         for (JsonNode t : r.get("tests")) {
-            if (t.get("tags").get(0).asText().equals(id) && t.get("name").asText().contains("scene " + sceneFile)) {
+            if (t.get("tags").get(0).asText().equals(id) && t.get("name").asText().endsWith("/" + sceneFile)) {
                 assertEquals(0, t.get("score").asDouble(), 1e-9, "the render shows the bug: " + t);
                 return;
             }
