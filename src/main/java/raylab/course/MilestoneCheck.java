@@ -347,6 +347,7 @@ public final class MilestoneCheck {
             List<String> studentFiles) throws IOException {
         String java = Path.of(System.getProperty("java.home"), "bin", "java").toString();
         Path png = root.resolve("out").resolve(baseName(g.scene()) + ".png");
+        Files.createDirectories(png.getParent()); // render -o refuses a missing folder
         List<String> cmd = List.of(java, "-Xmx1g", "-XX:+ExitOnOutOfMemoryError", "-Djava.awt.headless=true", "-cp",
                 String.join(File.pathSeparator, classPath.stream().map(Path::toString).toList()),
                 "raylab.cli.Main", "render", root.resolve(g.scene()).toString(), "-o", png.toString(),

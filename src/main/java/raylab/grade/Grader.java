@@ -518,7 +518,7 @@ public final class Grader {
     /** Visibility and kind of the test class. */
     private static Kind kindOf(Assignment a, String className) {
         String outer = GraderSetup.outer(className);
-        if (outer.equals(DataCases.className(a.id()))) {
+        if (outer.equals(DataCases.className(a.id())) || outer.equals(DataCases.visibleClassName(a.id()))) {
             return Kind.CASE;
         }
         for (String v : a.tests().visible()) {

@@ -42,10 +42,10 @@ class ReleaseHandoutTest {
         String text = Files.readString(json);
         // Add 3 to the visible points (and so to the total), whatever they are today.
         java.util.regex.Matcher total = java.util.regex.Pattern.compile("\"points\": (\\d+),").matcher(text);
-        java.util.regex.Matcher visible = java.util.regex.Pattern.compile("\"visiblePoints\": (\\d+),").matcher(text);
-        assertTrue(total.find() && visible.find(), text);
+        java.util.regex.Matcher visibleMatch = java.util.regex.Pattern.compile("\"visiblePoints\": (\\d+),").matcher(text);
+        assertTrue(total.find() && visibleMatch.find(), text);
         int newTotal = Integer.parseInt(total.group(1)) + 3;
-        int newVisible = Integer.parseInt(visible.group(1)) + 3;
+        int newVisible = Integer.parseInt(visibleMatch.group(1)) + 3;
         Files.writeString(json, text.replaceFirst("\"points\": \\d+,", "\"points\": " + newTotal + ",")
                 .replaceFirst("\"visiblePoints\": \\d+,", "\"visiblePoints\": " + newVisible + ","));
         String handoutBefore = Files.readString(copy.resolve("assignments/02-box/README.md"));
