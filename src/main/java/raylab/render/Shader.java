@@ -8,11 +8,15 @@ import raylab.math.Vec3;
 import raylab.ray.IntersectionRecord;
 import raylab.ray.Ray;
 import raylab.scene.Scene;
+import raylab.shading.Shading;
+import raylab.shading.ShadingPoint;
 import raylab.shading.Shadows;
 import raylab.surface.Surface;
 
 /**
- * The lecture's shading model, run as the plan says:
+ * The lecture's shading model, run as the plan says. The loop over the lights is the student's
+ * {@link Shading#shade} (milestone lambert); this class answers its questions (ambient term,
+ * shadow test, diffuse and specular terms) as the plan and the debug mode say:
  * <pre>
  *   L = ka·Ia + Σ_i [ kd·I_i·max(0, n·l_i) + ks·I_i·max(0, n·h_i)^p ]
  * </pre>
@@ -69,41 +73,85 @@ public final class Shader {
         if (!m.isLit()) {
             return mode == Mode.FULL ? m.unlitColor(hit) : Color.BLACK;
         }
-        Color L = Color.BLACK;
-        if (mode == Mode.FULL && plan.ambient) {
-            L = L.plus(m.ka().times(scene.ambient));
-            if (listener != null) {
-                listener.ambient(L);
-            }
-        }
+        Vec3 v = ray.d.normalize().negate();
+        Point at = new Point(hit.point, n, v, m, stats);
         if (!plan.lighting) {
+            // No light can reach any point: the light loop is not run at all.
+            Color L = at.ambient();
             return mode == Mode.SHADOWS ? Color.WHITE : L;
         }
-        Vec3 x = hit.point;
-        Vec3 v = ray.d.normalize().negate();
-        boolean specular = plan.specular && (plan.bruteForce || m.hasSpecular())
-                && (mode == Mode.FULL || mode == Mode.SPECULAR);
-        int lights = 0;
-        int visible = 0;
-        for (int i = 0; i < scene.lights.size(); i++) {
-            PointLight light = scene.lights.get(i);
-            Vec3 l = light.position.minus(x).normalize();
+        Color L = Shading.shade(at.point, scene.lights);
+        at.finish();
+        if (mode == Mode.SHADOWS) {
+            return at.inFront == 0 ? Color.BLACK : Color.WHITE.times((double) at.visible / at.inFront);
+        }
+        return L;
+    }
+
+    /**
+     * The framework's answers to the questions of the student's {@link Shading#shade}, as the plan
+     * and the debug mode say: a shadow ray only where the plan traces one, terms left out of a
+     * debug mode black, every step counted and told to the listener.
+     */
+    private final class Point implements ShadingPoint.Answers {
+        final ShadingPoint point;
+        final RenderStats stats;
+        final boolean specular;
+        int inFront;
+        int visible;
+        /** The light the loop looked at last, until it is shaded or found blocked (for traces). */
+        PointLight pending;
+
+        Point(Vec3 x, Vec3 n, Vec3 v, Material m, RenderStats stats) {
+            this.point = new ShadingPoint(x, n, v, m, this);
+            this.stats = stats;
+            this.specular = plan.specular && (plan.bruteForce || m.hasSpecular())
+                    && (mode == Mode.FULL || mode == Mode.SPECULAR);
+        }
+
+        Color ambient() {
+            return ambient(point);
+        }
+
+        @Override
+        public Color ambient(ShadingPoint at) {
+            if (mode != Mode.FULL || !plan.ambient) {
+                return Color.BLACK;
+            }
+            Color a = at.material.ka().times(scene.ambient);
             if (listener != null) {
-                listener.light(light, l, n.dot(l));
+                listener.ambient(a);
             }
-            // Written so that NaN fails too: a light exactly at x has no direction (l = 0/0).
-            if (!(n.dot(l) > 0)) {
-                if (listener != null) {
-                    listener.skipped(light, light.position.equals(x)
-                            ? "exactly at the point (no direction l): no diffuse, no specular"
-                            : "behind the surface (n·l <= 0): no diffuse, no specular");
-                }
-                continue; // light behind the surface (or at x): neither term contributes
+            return a;
+        }
+
+        @Override
+        public void lookedAt(ShadingPoint at, PointLight light, Vec3 l) {
+            finish();
+            pending = light;
+            if (listener != null) {
+                listener.light(light, l, at.n.dot(l));
             }
-            lights++;
-            if (plan.shadows[i]) {
+        }
+
+        /** A light looked at and then neither tested nor shaded was skipped: behind the surface. */
+        void finish() {
+            if (pending != null && listener != null) {
+                listener.skipped(pending, pending.position.equals(point.x)
+                        ? "exactly at the point (no direction l): no diffuse, no specular"
+                        : "behind the surface (n·l <= 0): no diffuse, no specular");
+            }
+            pending = null;
+        }
+
+        @Override
+        public boolean visible(ShadingPoint at, PointLight light) {
+            pending = null;
+            inFront++;
+            int i = indexOf(light);
+            if (i >= 0 && plan.shadows[i]) {
                 stats.shadowRays++;
-                boolean blocked = Shadows.isShadowed(root, x, n, light, scratch);
+                boolean blocked = Shadows.isShadowed(root, at.x, at.n, light, scratch);
                 stats.intersectionTests += scratch.tests;
                 scratch.tests = 0;
                 if (listener != null) {
@@ -111,32 +159,50 @@ public final class Shader {
                 }
                 if (blocked) {
                     stats.shadowRaysBlocked++;
-                    continue;
+                    return false;
                 }
             } else if (listener != null) {
                 listener.noShadowRay(light);
             }
             visible++;
-            if (mode == Mode.FULL || mode == Mode.DIFFUSE) {
-                Color d = m.diffuse(n, l, light.intensity);
-                if (listener != null) {
-                    listener.diffuse(light, d);
-                }
-                L = L.plus(d);
+            return true;
+        }
+
+        @Override
+        public Color diffuse(ShadingPoint at, PointLight light, Vec3 l) {
+            pending = null;
+            if (mode != Mode.FULL && mode != Mode.DIFFUSE) {
+                return Color.BLACK;
             }
-            if (specular) {
-                stats.specularEvaluations++;
-                Color sp = m.specular(n, l, v, light.intensity);
-                if (listener != null) {
-                    listener.specular(light, sp);
-                }
-                L = L.plus(sp);
+            Color d = at.material.diffuse(at.n, l, light.intensity);
+            if (listener != null) {
+                listener.diffuse(light, d);
+            }
+            return d;
+        }
+
+        @Override
+        public Color specular(ShadingPoint at, PointLight light, Vec3 l) {
+            pending = null;
+            if (!specular) {
+                return Color.BLACK;
+            }
+            stats.specularEvaluations++;
+            Color sp = at.material.specular(at.n, l, at.v, light.intensity);
+            if (listener != null) {
+                listener.specular(light, sp);
+            }
+            return sp;
+        }
+    }
+
+    private int indexOf(PointLight light) {
+        for (int i = 0; i < scene.lights.size(); i++) {
+            if (scene.lights.get(i) == light) {
+                return i;
             }
         }
-        if (mode == Mode.SHADOWS) {
-            return lights == 0 ? Color.BLACK : Color.WHITE.times((double) visible / lights);
-        }
-        return L;
+        return -1;
     }
 
     /** n turned to face the incoming ray: −n when the ray hits the back side (d·n &gt; 0). */

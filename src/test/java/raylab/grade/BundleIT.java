@@ -57,12 +57,15 @@ class BundleIT {
             }
         }
         assertTrue(names.containsAll(Set.of("setup.sh", "run_autograder", "raylab.jar")), "bundle has " + names);
-        // A sample submission: the reference Lambertian only (the other milestones score 0).
+        // A sample submission: the reference files of milestone lambert only (the others score 0).
         Path sub = Files.createDirectories(ag.resolve("submission"));
         Assignment lambert = Assignments.load(root).byId("lambert").orElseThrow();
-        Path src = root.resolve(lambert.files().get(0).path());
-        Files.writeString(sub.resolve("Lambertian.java"),
-                SolutionRegions.toStudent("Lambertian.java", Files.readString(src), Set.of("lambert")));
+        for (Assignment.StudentFile f : lambert.files()) {
+            Path src = root.resolve(f.path());
+            String name = src.getFileName().toString();
+            Files.writeString(sub.resolve(name),
+                    SolutionRegions.toStudent(name, Files.readString(src), Set.of("lambert")));
+        }
         ProcessBuilder pb = new ProcessBuilder("bash", source.resolve("run_autograder").toString())
                 .redirectErrorStream(true).redirectOutput(dir.resolve("log.txt").toFile());
         pb.environment().put("AUTOGRADER_ROOT", ag.toString());
