@@ -124,7 +124,7 @@ class ShadowsHiddenTest {
         PointLight l = light(new Vec3(0, 10, 0));
         assertTrue(Shadows.isShadowed(scene, x, n, l, new IntersectionRecord()),
                 "expected shadowed: a sphere spans y = 8.5..9.5, below the light at y = 10 (t = 0.85..0.95)"
-                        + ctx(scene, x, n, l) + "\n  hint: the shadow ray's range is t in (0, 1], not (0, 0.5] or a unit length");
+                        + ctx(scene, x, n, l) + "\n  hint: the shadow ray's range is 0 < t < 1 for d = light − x, not (0, 0.5] or a unit length");
     }
 
     @Test
@@ -190,5 +190,51 @@ class ShadowsHiddenTest {
         assertFalse(Shadows.isShadowed(floor, x, n, l, new IntersectionRecord()),
                 "expected lit: the light hovers 0.05 above the floor" + ctx(floor, x, n, l)
                         + "\n  hint: the offset must be much smaller than the distance to the light");
+    }
+
+    @Test
+    void lampsLyingOnAFaceAreNotBlockedByIt() {
+        // Lamps exactly on the top face y = 0 of a floor box; points on balls above it. The floor
+        // meets each shadow ray at t = 1, the light itself, which is not a blocker (0 < t < 1).
+        Box floor = new Box(new Vec3(-50, -1, -50), new Vec3(50, 0, 50), M, "floor");
+        long seed = 0x1a3bL;
+        SplittableRandom r = Hidden.rng(seed);
+        for (int i = 0; i < 100; i++) {
+            double radius = uniform(r, 0.5, 3);
+            Sphere ball = new Sphere(new Vec3(uniform(r, -10, 10), radius + uniform(r, 0.5, 5), uniform(r, -10, 10)),
+                    radius, M, "ball");
+            Vec3 lamp = new Vec3(uniform(r, -20, 20), 0, uniform(r, -20, 20));
+            // A point of the ball that faces the lamp, with nothing but the floor around.
+            Vec3 u = lamp.minus(ball.center).normalize();
+            Vec3 x = ball.center.plus(u.times(ball.radius));
+            Group scene = new Group(List.of(floor, ball), "scene");
+            PointLight l = light(lamp);
+            assertFalse(Shadows.isShadowed(scene, x, u, l, new IntersectionRecord()),
+                    "expected lit: the lamp lies exactly on the floor, which the shadow ray reaches at t = 1 #" + i
+                            + " (seed " + seed + ")" + ctx(scene, x, u, l)
+                            + "\n  hint: only blockers with 0 < t < 1 count; a Ray's range is closed, so tMax must be"
+                            + " below 1 (Math.nextDown(1.0)), or a tiny ε short of the light");
+        }
+    }
+
+    @Test
+    void pointsOnAContactLineAreNotBlockedByTheTouchingBox() {
+        // A box stands on the floor; points on the floor exactly along the foot of its face x = 1,
+        // lights on the open side: the box touches each shadow ray only at t = 0.
+        Box floor = new Box(new Vec3(-50, -1, -50), new Vec3(50, 0, 50), M, "floor");
+        Box block = new Box(new Vec3(1, 0, -4), new Vec3(3, 2, 4), M, "block on the floor");
+        Group scene = new Group(List.of(floor, block), "scene");
+        Vec3 n = new Vec3(0, 1, 0);
+        long seed = 0xc07aL;
+        SplittableRandom r = Hidden.rng(seed);
+        for (int i = 0; i < 100; i++) {
+            Vec3 x = new Vec3(1, 0, uniform(r, -3.5, 3.5));
+            PointLight l = light(new Vec3(uniform(r, -20, 0.5), uniform(r, 1, 20), uniform(r, -20, 20)));
+            assertFalse(Shadows.isShadowed(scene, x, n, l, new IntersectionRecord()),
+                    "expected lit: x lies where the box meets the floor and the light is on the open side #" + i
+                            + " (seed " + seed + ")" + ctx(scene, x, n, l)
+                            + "\n  hint: only blockers with 0 < t < 1 count; tMin = 0 on a closed range counts the box"
+                            + " touching x at t = 0: raise tMin above 0");
+        }
     }
 }

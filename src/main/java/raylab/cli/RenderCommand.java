@@ -61,6 +61,11 @@ public final class RenderCommand implements Callable<Integer> {
             description = "With --compare: the fraction of pixels allowed to differ (default: ${DEFAULT-VALUE}).")
     double tolerance = 0.001;
 
+    @Option(names = "--brute-force",
+            description = "Render without any shortcut of the plan: every effect on, a shadow ray toward every light"
+                    + " at every lit point, a linear group instead of a BVH (the image must be the same).")
+    boolean bruteForce;
+
     @Option(names = {"-q", "--quiet"}, description = "Print only errors and the comparison result.")
     boolean quiet;
 
@@ -88,12 +93,12 @@ public final class RenderCommand implements Callable<Integer> {
         long loadNanos = System.nanoTime() - t0;
         Path target = output != null ? output : defaultOutput(scenePath, mode);
 
-        RenderPlan plan = new RenderPlan(scene);
+        RenderPlan plan = bruteForce ? RenderPlan.bruteForce(scene) : new RenderPlan(scene);
         Renderer renderer = new Renderer(scene, plan, mode);
         if (!quiet) {
             out.printf("raylab render %s -> %s (%dx%d, %s, %d thread%s)%n", scenePath, target,
                     scene.width, scene.height, mode.name().toLowerCase(), threads, threads == 1 ? "" : "s");
-            out.println("plan:");
+            out.println(bruteForce ? "plan (brute force):" : "plan:");
             plan.describe().forEach(out::println);
             out.flush();
         }

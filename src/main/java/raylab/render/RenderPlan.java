@@ -3,15 +3,24 @@ package raylab.render;
 import java.util.ArrayList;
 import java.util.List;
 
+import raylab.camera.PerspectiveCamera;
 import raylab.light.PointLight;
 import raylab.material.Material;
+import raylab.math.Vec3;
 import raylab.scene.Scene;
+import raylab.surface.Box;
+import raylab.surface.Mesh;
+import raylab.surface.Sphere;
 import raylab.surface.Surface;
 
 /**
  * What a render must compute, derived from the scene before any ray is traced: the renderer
  * runs nothing that the plan leaves out. Each decision keeps the reason it was made, which
  * {@code raylab render} prints.
+ *
+ * <p>Every decision is a proven no-op: leaving out what the plan leaves out changes no pixel.
+ * {@link #bruteForce(Scene)} is the plan that leaves nothing out (the test
+ * {@code PlanVersusBruteForceTest} renders random scenes both ways and requires the same image).
  */
 public final class RenderPlan {
     /** Primitive count from which a bounding volume hierarchy pays for itself. */
@@ -29,9 +38,61 @@ public final class RenderPlan {
     public final int samplesPerPixel;
     /** Whether to trace through a bounding volume hierarchy rather than a linear group. */
     public final boolean acceleration;
+    /**
+     * Whether this is the brute-force plan: specular terms evaluated for every lit material
+     * (also with ks = 0), ka·Ia added whenever the scene allows it, shadow rays toward every light
+     * that casts shadows, and a linear group of every primitive (meshes split into triangles).
+     */
+    public final boolean bruteForce;
     private final List<String> lines = new ArrayList<>();
 
+    /**
+     * The brute-force plan of a scene: no shortcut at all. Only what the scene itself says is kept
+     * (a light with {@code "shadows": false}, an effect switched off with {@code false}), because
+     * that changes the image by definition; every decision the plan would infer is left out.
+     */
+    public static RenderPlan bruteForce(Scene scene) {
+        return new RenderPlan(scene, true);
+    }
+
     public RenderPlan(Scene scene) {
+        this(scene, false);
+    }
+
+    private RenderPlan(Scene scene, boolean brute) {
+        bruteForce = brute;
+        if (brute) {
+            lighting = true;
+            ambient = !Boolean.FALSE.equals(scene.effects.ambient());
+            specular = !Boolean.FALSE.equals(scene.effects.specular());
+            shadows = new boolean[scene.lights.size()];
+            note("brute force", "every shortcut of the plan is off");
+            note("lighting", "on: the light loop runs at every lit point (" + scene.lights.size() + " light(s))");
+            note("ambient", ambient ? "on: ka·Ia added at every lit point, even when zero"
+                    : "off: switched off by the scene");
+            note("specular", specular ? "on: evaluated for every lit material, even with ks = 0"
+                    : "off: switched off by the scene");
+            for (int i = 0; i < shadows.length; i++) {
+                PointLight light = scene.lights.get(i);
+                String why;
+                if (Boolean.FALSE.equals(scene.effects.shadows())) {
+                    why = "off: switched off by the scene";
+                } else if (!light.castsShadows) {
+                    why = "off: the light casts no shadows";
+                } else {
+                    shadows[i] = true;
+                    why = "on: a shadow ray at every lit point facing the light";
+                }
+                note("shadows of " + light.name, why);
+            }
+            samplesPerPixel = scene.samplesPerPixel;
+            note("samples", samplesPerPixel == 1 ? "1 per pixel, through the pixel centre"
+                    : samplesPerPixel + " per pixel, " + scene.sampler.name().toLowerCase());
+            acceleration = false;
+            note("acceleration", "off: linear group of all " + scene.primitiveCount()
+                    + " primitive(s), meshes split into triangles");
+            return;
+        }
         List<Material> lit = scene.materials().stream().filter(Material::isLit).toList();
         int primitives = scene.primitiveCount();
 
@@ -77,8 +138,7 @@ public final class RenderPlan {
         }
 
         shadows = new boolean[scene.lights.size()];
-        boolean canBlock = !(scene.surfaces.size() == 1 && scene.surfaces.get(0).isConvex())
-                && !scene.surfaces.isEmpty();
+        boolean canBlock = !scene.surfaces.isEmpty() && !seenFromOutsideOnly(scene);
         for (int i = 0; i < shadows.length; i++) {
             PointLight light = scene.lights.get(i);
             String why;
@@ -89,7 +149,7 @@ public final class RenderPlan {
             } else if (!light.castsShadows) {
                 why = "off: the light casts no shadows";
             } else if (!canBlock) {
-                why = "off: a single convex surface cannot shadow itself";
+                why = "off: a single convex surface seen from outside cannot shadow itself";
             } else {
                 shadows[i] = true;
                 why = "on";
@@ -120,6 +180,51 @@ public final class RenderPlan {
         }
     }
 
+    /** Relative margin by which the eye must lie outside the convex surface. */
+    static final double OUTSIDE_MARGIN = 1e-6;
+
+    /**
+     * Whether the scene is one sphere or one box seen by a perspective camera whose eye is
+     * clearly outside it. Then no shadow ray can be blocked, which is why none is traced:
+     * <ul>
+     * <li>every eye ray starts at the eye, outside the convex solid K, so its closest hit x is
+     * where it enters K, and the normal n turned toward the viewer is the outward normal;
+     * <li>K lies in the half-space n·(y − x) ≤ 0 behind the plane through x (a tangent plane of
+     * the sphere, the plane of the box face that was hit);
+     * <li>only lights with n·l &gt; 0 get a shadow ray, and the points x + t(q − x), 0 &lt; t &lt; 1,
+     * then have n·(y − x) = t n·(q − x) &gt; 0: none lies in K, so nothing blocks the light.
+     * </ul>
+     * With the eye inside (or on) the solid, eye rays hit the inside of the far wall, whose
+     * normal faces inward; a light inside the solid is then in front of that wall but the near
+     * wall may be between (for a box: another face), so shadow rays are needed. An orthographic
+     * camera starts its rays on a whole rectangle, so the rule is not applied to it at all.
+     * The margin (a millionth of the size) keeps eye rays that start a rounding error away from
+     * the surface out of the rule.
+     */
+    static boolean seenFromOutsideOnly(Scene scene) {
+        if (scene.surfaces.size() != 1 || !(scene.camera instanceof PerspectiveCamera)) {
+            return false;
+        }
+        Surface s = scene.surfaces.get(0);
+        Vec3 eye = scene.camera.eye;
+        if (s instanceof Sphere sphere && s.isConvex()) {
+            double dist = eye.minus(sphere.center).length();
+            return dist > sphere.radius * (1 + OUTSIDE_MARGIN);
+        }
+        if (s instanceof Box box && s.isConvex()) {
+            double size = box.max.minus(box.min).maxAbs();
+            double margin = OUTSIDE_MARGIN * Math.max(size, box.min.maxAbs() + box.max.maxAbs());
+            for (int axis = 0; axis < 3; axis++) {
+                double e = eye.get(axis);
+                if (e < box.min.get(axis) - margin || e > box.max.get(axis) + margin) {
+                    return true;
+                }
+            }
+            return false;
+        }
+        return false;
+    }
+
     private void note(String what, String why) {
         lines.add(String.format("  %-22s %s", what, why));
     }
@@ -141,7 +246,25 @@ public final class RenderPlan {
 
     /** The surface to trace against: the scene's surfaces in a hierarchy or a linear group (which counts tests). */
     public Surface root(Scene scene) {
+        if (bruteForce) {
+            return new raylab.surface.Group(primitives(scene.surfaces), "scene (brute force)");
+        }
         return acceleration ? new raylab.surface.Bvh(scene.surfaces, "scene")
                 : new raylab.surface.Group(scene.surfaces, "scene");
+    }
+
+    /** Every primitive of the surfaces, in order: meshes and groups split into their members. */
+    public static List<Surface> primitives(List<Surface> surfaces) {
+        List<Surface> out = new ArrayList<>();
+        for (Surface s : surfaces) {
+            if (s instanceof Mesh mesh) {
+                out.addAll(mesh.triangles());
+            } else if (s instanceof raylab.surface.Group g) {
+                out.addAll(primitives(g.members()));
+            } else {
+                out.add(s);
+            }
+        }
+        return out;
     }
 }

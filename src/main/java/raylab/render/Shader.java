@@ -17,7 +17,8 @@ import raylab.surface.Surface;
  *   L = ka·Ia + Σ_i [ kd·I_i·max(0, n·l_i) + ks·I_i·max(0, n·h_i)^p ]
  * </pre>
  * where the sum runs over lights i that are in front of the surface (n·l_i &gt; 0) and not blocked
- * by a shadow ray. n is the unit normal turned toward the viewer, v = −d/‖d‖, and l_i the unit
+ * by a shadow ray. A light exactly at the shaded point has no direction l_i (0/0 gives NaN, and
+ * NaN &gt; 0 is false): it is skipped like a light behind the surface and contributes nothing. n is the unit normal turned toward the viewer, v = −d/‖d‖, and l_i the unit
  * direction to light i. One shader per thread: it keeps a scratch record for shadow rays.
  */
 public final class Shader {
@@ -80,7 +81,7 @@ public final class Shader {
         }
         Vec3 x = hit.point;
         Vec3 v = ray.d.normalize().negate();
-        boolean specular = plan.specular && m.hasSpecular()
+        boolean specular = plan.specular && (plan.bruteForce || m.hasSpecular())
                 && (mode == Mode.FULL || mode == Mode.SPECULAR);
         int lights = 0;
         int visible = 0;
@@ -90,11 +91,14 @@ public final class Shader {
             if (listener != null) {
                 listener.light(light, l, n.dot(l));
             }
-            if (n.dot(l) <= 0) {
+            // Written so that NaN fails too: a light exactly at x has no direction (l = 0/0).
+            if (!(n.dot(l) > 0)) {
                 if (listener != null) {
-                    listener.skipped(light, "behind the surface (n·l <= 0): no diffuse, no specular");
+                    listener.skipped(light, light.position.equals(x)
+                            ? "exactly at the point (no direction l): no diffuse, no specular"
+                            : "behind the surface (n·l <= 0): no diffuse, no specular");
                 }
-                continue; // light behind the surface: neither term contributes
+                continue; // light behind the surface (or at x): neither term contributes
             }
             lights++;
             if (plan.shadows[i]) {

@@ -20,10 +20,15 @@ public final class Shadows {
      * Whether some surface blocks the light from point x.
      *
      * <p>The shadow ray goes from x toward the light: r(t) = x + t·(light − x), so t = 1 is the
-     * light itself. Only blockers strictly between the point and the light count, t in (0, 1).
-     * Because x was computed with rounding error it may lie just below the surface, so a ray
-     * starting exactly at x can hit the very surface it starts on (shadow acne): start the
-     * shadow ray a small distance off the surface, or raise its tMin above 0.
+     * light itself. Only blockers strictly between the point and the light count: the open
+     * range 0 &lt; t &lt; 1. A surface the light lies exactly on (a lamp standing on the floor,
+     * hit at t = 1) does not block it, and neither does a surface touching x itself (hit at
+     * t = 0, as at the line where a box stands on the floor). A {@link Ray}'s range is closed,
+     * [tMin, tMax], so the open range is tMin &gt; 0 and tMax = {@code Math.nextDown(1.0)}, the
+     * largest double below 1. Because x was computed with rounding error it may lie just below
+     * the surface, so a ray starting exactly at x can hit the very surface it starts on (shadow
+     * acne): start the shadow ray a small distance off the surface (t = 0 is then that start),
+     * or raise its tMin above 0. {@code docs/shading.md} states these conventions.
      *
      * @param scene   everything that can block the light; use its cheap any-hit query
      *                {@link Surface#intersectsAny}
@@ -43,7 +48,9 @@ public final class Shadows {
         double error = Numerics.pointError(x, 0);
         while (true) {
             Vec3 origin = Numerics.offsetRayOrigin(x, error, n, light.position.minus(x));
-            Ray shadowRay = new Ray(origin, light.position.minus(origin), 0.0, 1.0);
+            // Blockers with 0 < t < 1 only: the smallest positive double up to the largest below 1.
+            Ray shadowRay = new Ray(origin, light.position.minus(origin), Double.MIN_VALUE,
+                    Math.nextDown(1.0));
             if (!scene.intersectsAny(shadowRay, scratch)) {
                 return false;
             }
@@ -55,7 +62,7 @@ public final class Shadows {
             error = met;
         }
         // STUB
-        // // TODO(shadows): a shadow ray from just off x toward the light, t up to 1.
+        // // TODO(shadows): a shadow ray from just off x toward the light, blockers 0 < t < 1.
         // throw new NotImplemented("shadows", "Shadows.isShadowed");
         // END SOLUTION
     }

@@ -64,7 +64,10 @@ public abstract class Surface {
         return n;
     }
 
-    /** Whether the surface is convex, so that it cannot cast a shadow on itself. */
+    /**
+     * Whether the surface bounds a convex solid (a sphere, a box). Seen from outside, such a
+     * surface cannot cast a shadow on itself; seen from inside it can (RenderPlan).
+     */
     public boolean isConvex() {
         return false;
     }

@@ -183,8 +183,82 @@ class RenderPlanTest {
                 .camera(new PerspectiveCamera(Vec3.ZERO, new Vec3(0, 0, -1), new Vec3(0, 1, 0), 60, 16, 16))
                 .add(s).add(light(2, 3, 0, true)).add(light(-2, -1, -2, true)).build();
         Renderer r = render(scene);
-        assertFalse(r.plan().anyShadows(), "plan: a single convex " + kind + " cannot shadow itself");
+        assertFalse(r.plan().anyShadows(), "plan: a single convex " + kind + " seen from outside cannot shadow itself");
         assertEquals(0, r.stats().shadowRays, "no shadow rays for a single " + kind);
+    }
+
+    static boolean sameImage(Image a, Image b) {
+        for (int y = 0; y < a.height; y++) {
+            for (int x = 0; x < a.width; x++) {
+                if (!a.get(x, y).equals(b.get(x, y))) {
+                    return false;
+                }
+            }
+        }
+        return true;
+    }
+
+    /** From inside, the far wall blocks a light outside for every point of the near wall. */
+    @ParameterizedTest(name = "{0}")
+    @ValueSource(strings = {"sphere", "box"})
+    void cameraInsideASingleConvexSurfaceTracesShadowRays(String kind) {
+        Lambertian m = new Lambertian(KD, KA, "m");
+        Surface s = kind.equals("sphere") ? new Sphere(Vec3.ZERO, 5, m, "room")
+                : new Box(new Vec3(-5, -5, -5), new Vec3(5, 5, 5), m, "room");
+        Scene scene = Scene.builder().size(16, 12).ambient(new Color(0.1, 0.1, 0.1))
+                .camera(new PerspectiveCamera(Vec3.ZERO, new Vec3(0, 0, -1), new Vec3(0, 1, 0), 90, 16, 12))
+                .add(s).add(light(0, 0, 9, true)).build();
+        Renderer r = render(scene);
+        assertTrue(r.plan().anyShadows(), "camera inside the " + kind + ": shadows must be on");
+        assertLine(r.plan().describe(), "shadows of", l -> l.endsWith(" on"), "saying on");
+        assertEquals(r.stats().shadowRays, r.stats().shadowRaysBlocked,
+                "every shadow ray toward the light outside is blocked by the " + kind + " itself");
+        // Every pixel is in shadow: ka·Ia only.
+        Image img = new Renderer(scene).render(1, null);
+        Color ambient = KA.times(new Color(0.1, 0.1, 0.1));
+        assertEquals(ambient, img.get(8, 6), "a point of the inner wall sees only ka·Ia");
+        Image brute = new Renderer(scene, RenderPlan.bruteForce(scene), Mode.FULL).render(1, null);
+        assertTrue(sameImage(img, brute), "plan and brute force give the same image");
+    }
+
+    @Test
+    void orthographicCameraOrEyeOnTheSurfaceGetsNoConvexityShortcut() {
+        Lambertian m = new Lambertian(KD, KA, "m");
+        Sphere ball = new Sphere(new Vec3(0, 0, -4), 1, m, "s");
+        Scene ortho = Scene.builder().size(8, 8)
+                .camera(new raylab.camera.OrthographicCamera(Vec3.ZERO, new Vec3(0, 0, -1), new Vec3(0, 1, 0), 3, 8, 8))
+                .add(ball).add(light(2, 3, 0, true)).build();
+        assertTrue(new RenderPlan(ortho).anyShadows(), "orthographic rays start on a rectangle: no shortcut");
+        Scene onSurface = Scene.builder().size(8, 8)
+                .camera(new PerspectiveCamera(new Vec3(0, 0, -3), new Vec3(0, 0, -1), new Vec3(0, 1, 0), 60, 8, 8))
+                .add(ball).add(light(2, 3, 0, true)).build();
+        assertTrue(new RenderPlan(onSurface).anyShadows(), "eye exactly on the sphere: no shortcut");
+    }
+
+    @Test
+    void bruteForcePlanLeavesNothingOut() {
+        BlinnPhong dull = new BlinnPhong(KD, Color.BLACK, 20, KA, "dull");
+        List<Triangle> tris = List.of(
+                new Triangle(new Vec3(-2, -1, -4), new Vec3(2, -1, -4), new Vec3(0, 2, -4), dull, "t0"),
+                new Triangle(new Vec3(-0.3, -0.3, -2), new Vec3(0.3, -0.3, -2), new Vec3(0, 0.3, -2), dull, "t1"));
+        Scene scene = Scene.builder().size(8, 8)
+                .camera(new PerspectiveCamera(Vec3.ZERO, new Vec3(0, 0, -1), new Vec3(0, 1, 0), 60, 8, 8))
+                .add(new Sphere(new Vec3(0, 0, -10), 1, dull, "s")).add(new Mesh(tris, "mesh"))
+                .add(light(1, 1, 0, true)).add(light(-1, 1, 0, false))
+                .effects(new Effects(null, null, null, true)).build();
+        RenderPlan brute = RenderPlan.bruteForce(scene);
+        assertTrue(brute.bruteForce && brute.lighting && brute.ambient && brute.specular, "every effect on");
+        assertArrayEquals(new boolean[] {true, false}, brute.shadows,
+                "a shadow ray toward every light that casts shadows (the scene's own switch is kept)");
+        assertFalse(brute.acceleration, "no BVH, even when the scene asks for one");
+        Surface root = brute.root(scene);
+        assertInstanceOf(Group.class, root, "a linear group");
+        assertEquals(List.of("s", "t0", "t1"), ((Group) root).members().stream().map(Surface::name).toList(),
+                "the mesh split into its triangles, in order");
+        assertLine(brute.describe(), "brute force", l -> l.contains("off"), "saying every shortcut is off");
+        Renderer r = new Renderer(scene, brute, Mode.FULL);
+        r.render(1, null);
+        assertTrue(r.stats().specularEvaluations > 0, "specular evaluated although ks = 0");
     }
 
     @Test

@@ -246,4 +246,25 @@ class ShaderTest {
                     "seed " + seed + ", case " + i + ", ray " + ray + ", x=" + x + ", p=" + p);
         }
     }
+
+    // A light exactly at the shaded point: l = 0/0 is NaN, and NaN must not get through n·l > 0.
+
+    @ParameterizedTest(name = "light casts shadows: {0}")
+    @ValueSource(booleans = {false, true})
+    void lightExactlyAtThePointContributesNothing(boolean shadows) {
+        PointLight atX = new PointLight(new Vec3(0, 0, -4), I1, shadows, "at x");
+        Scene scene = base(SHINY).ambient(IA).add(atX).build();
+        Color c = shade(scene, AXIS, Mode.FULL);
+        assertTrue(c.isFinite(), "a light exactly at x must not make the pixel NaN: " + c);
+        assertColor(KA.times(IA), c, 0, "only ka·Ia: the light at x has no direction and adds nothing");
+        // One pixel, whose centre ray is the axis: it sees exactly x = (0, 0, −4).
+        Scene onePixel = scene.toBuilder().size(1, 1)
+                .camera(new PerspectiveCamera(Vec3.ZERO, new Vec3(0, 0, -1), new Vec3(0, 1, 0), 60, 1, 1)).build();
+        for (RenderPlan plan : new RenderPlan[] {new RenderPlan(onePixel), RenderPlan.bruteForce(onePixel)}) {
+            Renderer r = new Renderer(onePixel, plan, Mode.FULL);
+            Image image = r.render(1, null);
+            assertEquals(0, r.stats().nonFinitePixels, "NaN pixels (brute force: " + plan.bruteForce + ")");
+            assertColor(KA.times(IA), image.get(0, 0), 0, "the pixel seeing x (brute force: " + plan.bruteForce + ")");
+        }
+    }
 }

@@ -90,6 +90,28 @@ class ShadowsTest {
     }
 
     @Test
+    @DisplayName("a lamp standing on the floor is not blocked by the floor (t = 1 is the light)")
+    void lightOnAFloor() {
+        // x is the bottom of a ball hovering over the floor; the lamp lies exactly on the floor's
+        // top face y = 0, so the shadow ray reaches the floor at t = 1, the light itself.
+        Sphere ball = ball(0, 3, 0, 1);
+        Check.lit(scene(FLOOR, ball), new Vec3(0, 2, 0), new Vec3(0, -1, 0), light(0.5, 0, 0.5),
+                "only blockers strictly before the light count, t < 1: a Ray's range is closed, so use"
+                        + " tMax = Math.nextDown(1.0), the largest double below 1 (or stop a tiny ε short)");
+    }
+
+    @Test
+    @DisplayName("a point on the line where a box stands on the floor is not blocked by the box (t = 0)")
+    void contactLine() {
+        // The box stands on the floor; x = (1, 0, 0) lies on the floor and on the box's face
+        // x = 1. The light is on the other side: the shadow ray touches the box only at t = 0.
+        Box block = new Box(new Vec3(1, 0, -1), new Vec3(2, 1, 1), WHITE, "block on the floor");
+        Check.lit(scene(FLOOR, block), new Vec3(1, 0, 0), UP, light(-3, 4, 0),
+                "only blockers strictly after the point count, t > 0: tMin = 0 on a closed range counts a"
+                        + " surface touching x; raise tMin above 0 (for example to Double.MIN_VALUE or ε)");
+    }
+
+    @Test
     @DisplayName("a ball beside the path casts no shadow")
     void blockerBeside() {
         Check.lit(scene(FLOOR, ball(3, 5, 0, 1)), X, UP, LIGHT, null);
