@@ -88,7 +88,7 @@ final class PlanExperiment implements Experiment {
         // Pixels per scene: as many as the brute force renders in about this many seconds (a probe
         // of 64 pixels tells), at most every pixel of a 4 × 4 grid; so that the slowest scene
         // (a mesh traced without any hierarchy) stays affordable.
-        double budget = study.quick ? 0.06 : 0.25;
+        double budget = study.quick ? 0.06 : 0.15;
         int runs = study.pick(9, 7);
         List<String[]> rows = new ArrayList<>();
         rows.add(new String[] {"scene", "pixels traced (of)", "differing pixels", "time as planned (ms, traced pixels)", "time brute force (ms)",
@@ -154,8 +154,8 @@ final class PlanExperiment implements Experiment {
         }
         Plots.save(Plots.front("Render plan: differing pixels against time", "time for the traced pixels (ms, log; bar: quartiles)",
                 "pixels differing from the brute-force image (%)", true, false, 0,
-                List.of(new Plots.Curve("as planned (one point per scene)", planned),
-                        new Plots.Curve("brute force (one point per scene)", brute))),
+                List.of(new Plots.Curve("as planned (one point per scene)", planned, false),
+                        new Plots.Curve("brute force (one point per scene)", brute, false))),
                 study.out, "plan-front.png");
         r.plot("plan-front.png", "differing pixels against time, one point per scene and mode; dashed: the front");
         r.paragraph(String.format("Each bundled scene (scenes/*.json) is rendered twice on the same pixels (spread evenly"
