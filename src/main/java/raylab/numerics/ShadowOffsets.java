@@ -26,7 +26,7 @@ public final class ShadowOffsets {
     /** No offset at all: the shadow ray starts exactly at the computed hit point. */
     public static boolean none(Surface scene, Vec3 x, Vec3 n, PointLight light,
             IntersectionRecord scratch) {
-        Ray shadowRay = new Ray(x, light.position.minus(x), 0.0, 1.0);
+        Ray shadowRay = new Ray(x, light.position.minus(x), Double.MIN_VALUE, Math.nextDown(1.0));
         return scene.intersectsAny(shadowRay, scratch);
     }
 
@@ -40,7 +40,7 @@ public final class ShadowOffsets {
         Vec3 toLight = light.position.minus(x);
         Vec3 offset = n.times(n.dot(toLight) >= 0 ? Shadows.EPSILON : -Shadows.EPSILON);
         Vec3 origin = x.plus(offset);
-        Ray shadowRay = new Ray(origin, light.position.minus(origin), 0.0, 1.0);
+        Ray shadowRay = new Ray(origin, light.position.minus(origin), Double.MIN_VALUE, Math.nextDown(1.0));
         return scene.intersectsAny(shadowRay, scratch);
     }
 
@@ -53,7 +53,7 @@ public final class ShadowOffsets {
     public static boolean hitPointScaled(Surface scene, Vec3 x, Vec3 n, PointLight light,
             IntersectionRecord scratch) {
         Vec3 origin = Numerics.offsetRayOrigin(x, n, light.position.minus(x));
-        Ray shadowRay = new Ray(origin, light.position.minus(origin), 0.0, 1.0);
+        Ray shadowRay = new Ray(origin, light.position.minus(origin), Double.MIN_VALUE, Math.nextDown(1.0));
         return scene.intersectsAny(shadowRay, scratch);
     }
 
@@ -67,7 +67,7 @@ public final class ShadowOffsets {
             IntersectionRecord scratch) {
         double magnitude = Numerics.magnitude(scene.boundingBox());
         Vec3 origin = Numerics.offsetRayOrigin(x, n, light.position.minus(x), magnitude);
-        Ray shadowRay = new Ray(origin, light.position.minus(origin), 0.0, 1.0);
+        Ray shadowRay = new Ray(origin, light.position.minus(origin), Double.MIN_VALUE, Math.nextDown(1.0));
         return scene.intersectsAny(shadowRay, scratch);
     }
 

@@ -18,7 +18,7 @@ final class FixedOffset {
     static boolean isShadowed(double epsilon, Surface scene, Vec3 x, Vec3 n, PointLight light, IntersectionRecord scratch) {
         Vec3 toLight = light.position.minus(x);
         Vec3 origin = x.plus(n.times(n.dot(toLight) >= 0 ? epsilon : -epsilon));
-        Ray shadowRay = new Ray(origin, light.position.minus(origin), 0.0, 1.0);
+        Ray shadowRay = new Ray(origin, light.position.minus(origin), Double.MIN_VALUE, Math.nextDown(1.0));
         return scene.intersectsAny(shadowRay, scratch);
     }
 }

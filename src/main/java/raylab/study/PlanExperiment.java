@@ -9,10 +9,10 @@ import java.util.stream.Stream;
 import raylab.math.Color;
 import raylab.ray.IntersectionRecord;
 import raylab.render.Mode;
+import raylab.render.RenderPlan;
 import raylab.render.RenderStats;
 import raylab.render.Renderer;
 import raylab.render.Shader;
-import raylab.scene.Effects;
 import raylab.scene.Scene;
 import raylab.scene.SceneLoader;
 
@@ -34,35 +34,32 @@ final class PlanExperiment implements Experiment {
         return "what the render plan saves on the bundled scenes";
     }
 
-    /**
-     * The brute-force renderer of a scene: every effect the scene does not switch off explicitly
-     * is switched on, and acceleration is off (a linear group). The effect switches cannot
-     * override the plan's own content checks (no ambient term when Ia is zero, no specular term
-     * without ks, no shadow rays for a single convex surface), so those shortcuts stay; the first
-     * two add exactly zero when taken.
-     */
+    /** The brute-force renderer of a scene: {@link RenderPlan#bruteForce}, every shortcut of the plan off. */
     static Renderer bruteForce(Scene scene) {
-        Effects e = scene.effects;
-        Effects all = new Effects(on(e.shadows()), on(e.specular()), on(e.ambient()), Boolean.FALSE);
-        return new Renderer(scene.withEffects(all));
+        return new Renderer(scene, RenderPlan.bruteForce(scene), Mode.FULL);
     }
 
-    private static Boolean on(Boolean b) {
-        return b == null ? Boolean.TRUE : b;
-    }
-
-    /** Renders every stride-th pixel in both directions; returns the colours, adds to stats. */
-    static Color[] render(Renderer r, int stride, RenderStats stats) {
-        Scene scene = r.scene();
-        Shader shader = new Shader(scene, r.root(), r.plan(), Mode.FULL);
-        IntersectionRecord rec = new IntersectionRecord();
-        List<Color> out = new ArrayList<>();
-        for (int y = stride / 2; y < scene.height; y += stride) {
-            for (int x = stride / 2; x < scene.width; x += stride) {
-                out.add(r.pixel(x, y, shader, rec, stats));
-            }
+    /** count pixels spread evenly over the image (a Fibonacci lattice: row by row, golden-ratio steps across). */
+    static int[][] pixels(int width, int height, int count) {
+        int n = Math.max(1, Math.min(count, width * height));
+        int[][] out = new int[n][2];
+        double phi = (Math.sqrt(5) - 1) / 2;
+        for (int i = 0; i < n; i++) {
+            out[i][0] = (int) Math.min(width - 1, Math.floor(((i * phi) % 1.0) * width));
+            out[i][1] = (int) Math.min(height - 1, Math.floor((i + 0.5) / n * height));
         }
-        return out.toArray(new Color[0]);
+        return out;
+    }
+
+    /** Renders the given pixels; returns their colours, adds to stats. */
+    static Color[] render(Renderer r, int[][] pixels, RenderStats stats) {
+        Shader shader = new Shader(r.scene(), r.root(), r.plan(), Mode.FULL);
+        IntersectionRecord rec = new IntersectionRecord();
+        Color[] out = new Color[pixels.length];
+        for (int i = 0; i < pixels.length; i++) {
+            out[i] = r.pixel(pixels[i][0], pixels[i][1], shader, rec, stats);
+        }
+        return out;
     }
 
     /** The verdict for one scene: both must give the same image (tolerance 0 differing pixels); time per image. */
@@ -88,10 +85,13 @@ final class PlanExperiment implements Experiment {
             r.conclude("**Render plan: not measured.** The bundled scenes were not found in ./scenes.");
             return;
         }
-        int stride = study.pick(4, 12);
+        // Pixels per scene: as many as the brute force renders in about this many seconds (a probe
+        // of 64 pixels tells), at most every pixel of a 4 × 4 grid; so that the slowest scene
+        // (a mesh traced without any hierarchy) stays affordable.
+        double budget = study.quick ? 0.06 : 0.15;
         int runs = study.pick(9, 7);
         List<String[]> rows = new ArrayList<>();
-        rows.add(new String[] {"scene", "pixels traced", "differing pixels", "time as planned (ms)", "time brute force (ms)",
+        rows.add(new String[] {"scene", "pixels traced (of)", "differing pixels", "time as planned (ms, traced pixels)", "time brute force (ms)",
             "brute / planned time (95% interval)", "shadow rays planned / brute", "intersection tests planned / brute",
             "verdict"});
         List<Plots.FrontPoint> planned = new ArrayList<>();
@@ -108,10 +108,17 @@ final class PlanExperiment implements Experiment {
             Scene scene = SceneLoader.load(file);
             Renderer p = new Renderer(scene);
             Renderer b = bruteForce(scene);
+            int[][] probe = pixels(scene.width, scene.height, 64);
+            render(b, probe, new RenderStats());
+            long t0 = System.nanoTime();
+            render(b, probe, new RenderStats());
+            double perPixel = (System.nanoTime() - t0) / 1e9 / probe.length;
+            int count = (int) Math.max(64, Math.min(scene.width * scene.height / 16, budget / Math.max(1e-9, perPixel)));
+            int[][] px = pixels(scene.width, scene.height, count);
             RenderStats sp = new RenderStats();
             RenderStats sb = new RenderStats();
-            Color[] ip = render(p, stride, sp);
-            Color[] ib = render(b, stride, sb);
+            Color[] ip = render(p, px, sp);
+            Color[] ib = render(b, px, sb);
             int differ = 0;
             for (int i = 0; i < ip.length; i++) {
                 if (ip[i].r != ib[i].r || ip[i].g != ib[i].g || ip[i].b != ib[i].b) {
@@ -120,7 +127,7 @@ final class PlanExperiment implements Experiment {
             }
             identical += differ == 0 ? 1 : 0;
             Timing.Stats[] t = study.timing.secondsInterleaved(1, runs,
-                    () -> render(p, stride, new RenderStats()), () -> render(b, stride, new RenderStats()));
+                    () -> render(p, px, new RenderStats()), () -> render(b, px, new RenderStats()));
             double pct = 100.0 * differ / ip.length;
             Verdict v = decide(pct, t[0], t[1]);
             if (MODES[0].equals(v.recommended())) {
@@ -136,7 +143,8 @@ final class PlanExperiment implements Experiment {
             shadowBrute += sb.shadowRays;
             testsPlanned += sp.intersectionTests;
             testsBrute += sb.intersectionTests;
-            rows.add(new String[] {file.getFileName().toString(), String.format("%,d", ip.length), String.valueOf(differ),
+            rows.add(new String[] {file.getFileName().toString(),
+                String.format("%,d (%,d)", ip.length, scene.width * scene.height), String.valueOf(differ),
                 t[0].scaled(1000).format("%.1f"), t[1].scaled(1000).format("%.1f"), ratio.format(),
                 String.format("%,d / %,d", sp.shadowRays, sb.shadowRays),
                 String.format("%,d / %,d", sp.intersectionTests, sb.intersectionTests),
@@ -146,19 +154,20 @@ final class PlanExperiment implements Experiment {
         }
         Plots.save(Plots.front("Render plan: differing pixels against time", "time for the traced pixels (ms, log; bar: quartiles)",
                 "pixels differing from the brute-force image (%)", true, false, 0,
-                List.of(new Plots.Curve("as planned (one point per scene)", planned),
-                        new Plots.Curve("brute force (one point per scene)", brute))),
+                List.of(new Plots.Curve("as planned (one point per scene)", planned, false),
+                        new Plots.Curve("brute force (one point per scene)", brute, false))),
                 study.out, "plan-front.png");
         r.plot("plan-front.png", "differing pixels against time, one point per scene and mode; dashed: the front");
-        r.paragraph(String.format("Each bundled scene (scenes/*.json) is rendered twice on the same pixels (every %d-th pixel"
-                + " in each direction, so that the brute force stays affordable): as planned (RenderPlan: BVH from %d"
+        r.paragraph(String.format("Each bundled scene (scenes/*.json) is rendered twice on the same pixels (spread evenly"
+                + " over the image; as many as brute force renders in about %.2f s, at most one in 16, so that it stays"
+                + " affordable): as planned (RenderPlan: BVH from %d"
                 + " primitives, shadow rays only where something can block, specular and ambient terms only where they"
-                + " add something) and by brute force (PlanExperiment.bruteForce: every effect the scene does not switch"
-                + " off turned on, a linear group instead of any BVH). This is the study's own brute force: the render"
-                + " plan itself has no brute-force mode in this build, and the effect switches cannot undo the plan's"
-                + " content checks (Ia = 0, no ks, a single convex surface). The two must give the same colour, bit for"
-                + " bit, at every traced pixel. Time: both in turns with the calibration loop, %d runs after a warm-up.",
-                stride, raylab.render.RenderPlan.ACCELERATION_THRESHOLD, runs));
+                + " add something) and by brute force (RenderPlan.bruteForce, as `raylab render --brute-force`: the light"
+                + " loop at every lit point, specular and ambient terms always, a shadow ray toward every light that casts"
+                + " shadows, a linear group of every primitive with meshes split into triangles). The two must give the"
+                + " same colour, bit for bit, at every traced pixel. Time: both in turns with the calibration loop, %d"
+                + " runs after a warm-up. Load-independent costs: shadow rays and ray–primitive intersection tests.",
+                budget, RenderPlan.ACCELERATION_THRESHOLD, runs));
         r.table(rows);
         double geo = 0;
         for (double lr : logRatios) {

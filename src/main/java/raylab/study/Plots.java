@@ -125,7 +125,11 @@ final class Plots {
     }
 
     /** One method on a front: a single point, or a curve over a setting (samples per pixel, triangles). */
-    record Curve(String name, List<FrontPoint> points) {
+    record Curve(String name, List<FrontPoint> points, boolean joined) {
+        /** A curve whose points are joined in order (a setting that grows). */
+        Curve(String name, List<FrontPoint> points) {
+            this(name, points, true);
+        }
     }
 
     /**
@@ -184,7 +188,7 @@ final class Plots {
                 }
             }
             XYSeries s = line(chart, curve.name() + (onFront ? " (on the front)" : ""), x, y, c);
-            if (n == 1) {
+            if (n == 1 || !curve.joined()) {
                 s.setXYSeriesRenderStyle(XYSeries.XYSeriesRenderStyle.Scatter);
             }
             Color colour = PALETTE[c % PALETTE.length];

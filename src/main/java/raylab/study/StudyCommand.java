@@ -31,7 +31,7 @@ public final class StudyCommand implements Callable<Integer> {
     @Option(names = "--out", required = true, paramLabel = "DIR", description = "Directory for report.md and the plots.")
     Path out;
 
-    @Option(names = "--quick", description = "A reduced run (under 30 s on 2 cores), for CI.")
+    @Option(names = "--quick", description = "A reduced run, for CI (measured run times: docs/benchmarks.md).")
     boolean quick;
 
     @Option(names = "--only", paramLabel = "NAME", split = ",",

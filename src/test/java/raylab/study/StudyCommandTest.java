@@ -66,6 +66,21 @@ class StudyCommandTest {
         long count = bullets.lines().filter(l -> l.startsWith("- **")).count();
         assertEquals(StudyCommand.experiments().size(), count,
                 "expected one conclusion per experiment, got:\n" + bullets);
+        // Every experiment section opens with its error-against-cost front.
+        long sections = 0;
+        for (String part : md.substring(firstSection).split("\n## ")) {
+            String title = part.lines().findFirst().orElse("").strip();
+            if (title.isEmpty() || title.startsWith("How this agrees")) {
+                continue;
+            }
+            sections++;
+            String first = part.lines().skip(1).filter(l -> !l.isBlank()).findFirst().orElse("");
+            assertTrue(first.startsWith("![") && first.endsWith("-front.png)"),
+                    "expected section '" + title + "' to open with its front plot, got: " + first);
+        }
+        assertEquals(StudyCommand.experiments().size(), sections, "expected one section per experiment");
+        assertTrue(md.contains("**Machine noise:**") && md.contains("**Load average**") && md.contains("**Decision rule**"),
+                "expected the noise, the load average and the decision rule in the header:\n" + head(md));
         // Measured figures live in the conclusions and the tables: none of them may be NaN or infinite.
         String figures = bullets + "\n" + String.join("\n", md.lines().filter(l -> l.startsWith("|")).toList());
         assertTrue(!figures.contains("NaN") && !figures.contains("Infinity"),
