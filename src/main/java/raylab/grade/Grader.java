@@ -209,6 +209,13 @@ public final class Grader {
                     Files.createDirectories(t);
                 } else if (Files.isRegularFile(p)) {
                     Files.copy(p, t);
+                    // Readable by the sandboxed renderer whatever the instructor's file mode was
+                    // (a scene written through a temporary file is 0600).
+                    try {
+                        Files.setPosixFilePermissions(t, java.nio.file.attribute.PosixFilePermissions.fromString("rw-r--r--"));
+                    } catch (UnsupportedOperationException e) {
+                        // not a POSIX file system: nothing to widen
+                    }
                 }
             }
         }
