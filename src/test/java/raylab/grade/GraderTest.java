@@ -58,9 +58,15 @@ class GraderTest {
 
     /** The reference student files, flat, overlaid with a resource submission. */
     private Path submission(String overlay) throws IOException {
+        return submission(dir, overlay);
+    }
+
+    /** As above, in {@code dir} (shared with {@link RealisticBugsTest}). */
+    static Path submission(Path dir, String overlay) throws IOException {
+        Path root = Path.of(System.getProperty("raylab.grade.root", ".")).toAbsolutePath().normalize();
         Path sub = dir.resolve("submission-" + overlay);
         Files.createDirectories(sub);
-        for (Assignment a : assignments.all()) {
+        for (Assignment a : Assignments.load(root).all()) {
             for (Assignment.StudentFile f : a.files()) {
                 Path src = root.resolve(f.path());
                 String text = SolutionRegions.toStudent(src.getFileName().toString(), Files.readString(src),

@@ -12,8 +12,6 @@ import java.nio.file.Path;
 import java.util.ArrayList;
 import java.util.List;
 import java.util.Map;
-import java.util.Set;
-import java.util.stream.Stream;
 
 import org.junit.jupiter.api.BeforeAll;
 import org.junit.jupiter.api.Test;
@@ -23,9 +21,7 @@ import com.fasterxml.jackson.databind.JsonNode;
 import com.fasterxml.jackson.databind.ObjectMapper;
 
 import raylab.cli.Main;
-import raylab.course.Assignment;
 import raylab.course.Assignments;
-import raylab.course.SolutionRegions;
 
 /**
  * Realistic single bugs cost real points, through {@code raylab grade}: at least 1 point of their
@@ -51,22 +47,7 @@ class RealisticBugsTest {
 
     /** The reference student files, flat, overlaid with the files of a resource submission. */
     private Path submission(String overlay) throws IOException {
-        Path sub = dir.resolve("submission-" + overlay);
-        Files.createDirectories(sub);
-        for (Assignment a : assignments.all()) {
-            for (Assignment.StudentFile f : a.files()) {
-                Path src = root.resolve(f.path());
-                Files.writeString(sub.resolve(src.getFileName()), SolutionRegions.toStudent(src.getFileName().toString(),
-                        Files.readString(src), Set.of(a.id())));
-            }
-        }
-        Path res = root.resolve("src/test/resources/submissions").resolve(overlay);
-        try (Stream<Path> s = Files.list(res)) {
-            for (Path p : (Iterable<Path>) s::iterator) {
-                Files.writeString(sub.resolve(p.getFileName().toString()), Files.readString(p));
-            }
-        }
-        return sub;
+        return GraderTest.submission(dir, overlay);
     }
 
     private JsonNode grade(Path sub, String... milestones) throws IOException {
