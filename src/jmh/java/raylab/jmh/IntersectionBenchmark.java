@@ -200,10 +200,20 @@ public class IntersectionBenchmark {
 
     @Benchmark
     @OperationsPerInvocation(N)
-    public long shadowScaleAware() {
+    public long shadowSceneGlobal() {
         long blocked = 0;
         for (int i = 0; i < N; i++) {
-            blocked += ShadowOffsets.scaleAware(shadowScene, shadowPoints[i], shadowNormals[i], light, rec) ? 1 : 0;
+            blocked += ShadowOffsets.sceneGlobal(shadowScene, shadowPoints[i], shadowNormals[i], light, rec) ? 1 : 0;
+        }
+        return blocked;
+    }
+
+    @Benchmark
+    @OperationsPerInvocation(N)
+    public long shadowLocalOffset() {
+        long blocked = 0;
+        for (int i = 0; i < N; i++) {
+            blocked += ShadowOffsets.localOffset(shadowScene, shadowPoints[i], shadowNormals[i], light, rec) ? 1 : 0;
         }
         return blocked;
     }

@@ -14,6 +14,7 @@ import picocli.CommandLine.Spec;
 import picocli.CommandLine.Model.CommandSpec;
 import raylab.bench.MachineInfo;
 import raylab.bench.MeshBench;
+import raylab.bench.PairedRatio;
 import raylab.render.RenderPlan;
 import raylab.render.RenderStats;
 import raylab.render.Renderer;
@@ -38,6 +39,9 @@ public final class BenchCommand implements Callable<Integer> {
     @Parameters(paramLabel = "SCENE.json", arity = "0..*", description = "Scenes to render.")
     List<Path> scenes = new ArrayList<>();
 
+    /** Seed of the bootstrap resampling, so the same runs always give the same interval. */
+    private static final long SEED = 20261201L;
+
     @Option(names = "--obj", paramLabel = "MESH.obj",
             description = {"Instead of scenes: trace the rays of the shared Embree harness (../shared/bench/embree) on this mesh,",
                 "primary rays only, then primary plus one shadow ray per hit; prints Mrays/s (best and median of --runs)."})
@@ -52,13 +56,19 @@ public final class BenchCommand implements Callable<Integer> {
     @Option(names = "--warmup", description = "Untimed warm-up runs per scene (default: ${DEFAULT-VALUE}).")
     int warmup = 2;
 
-    @Option(names = "--threads", description = "Render threads (default: all cores, ${DEFAULT-VALUE}).")
-    int threads = Runtime.getRuntime().availableProcessors();
+    @Option(names = "--threads", split = ",", paramLabel = "N[,N...]",
+            description = {"Render threads (default: all cores, ${DEFAULT-VALUE}).",
+                "Several counts (such as 1,2) are timed in turns, run by run, and each is compared with the first:",
+                "speed-up as the median of the paired run ratios with a bootstrap 95% interval."})
+    List<Integer> threadCounts = new ArrayList<>(List.of(Runtime.getRuntime().availableProcessors()));
 
     @Override
     public Integer call() throws Exception {
-        if (runs < 1 || warmup < 0 || threads < 1) {
-            throw UserError.badInput("--runs and --threads must be at least 1, --warmup at least 0");
+        if (runs < 1 || warmup < 0 || threadCounts.isEmpty() || threadCounts.stream().anyMatch(t -> t == null || t < 1 || t > 1024)) {
+            throw UserError.badInput("--runs and --threads must be at least 1 (--threads at most 1024), --warmup at least 0");
+        }
+        if (threadCounts.size() > 1 && runs < 3) {
+            throw UserError.badInput("comparing thread counts needs --runs 3 or more");
         }
         PrintWriter out = spec.commandLine().getOut();
         if (obj != null) {
@@ -75,30 +85,39 @@ public final class BenchCommand implements Callable<Integer> {
             loadNanos.add(System.nanoTime() - t0);
         }
         out.println("machine: " + MachineInfo.current().oneLine());
-        out.printf("runs: %d timed after %d warm-up, %d thread%s%n%n", runs, warmup, threads, threads == 1 ? "" : "s");
-        out.println("| scene | size | primitives | median render time | min - max | rays per second | load (cold, meshes and their BVH) | scene BVH build |");
-        out.println("|---|---|---:|---:|---:|---:|---:|---:|");
+        out.printf("runs: %d timed after %d warm-up, threads %s%s%n%n", runs, warmup, counts(),
+                threadCounts.size() > 1 ? ", thread counts in turns run by run" : "");
+        out.println("| scene | size | primitives | threads | median render time | min - max | rays per second | speed-up over "
+                + threadCounts.get(0) + " thread" + (threadCounts.get(0) == 1 ? "" : "s")
+                + " (95% interval) | load (cold, meshes and their BVH) | scene BVH build |");
+        out.println("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|");
+        int k = threadCounts.size();
         for (int i = 0; i < loaded.size(); i++) {
             Scene s = loaded.get(i);
-            double[] seconds = new double[runs];
+            double[][] seconds = new double[k][runs];
             long rays = 0;
             long build = 0;
             for (int r = 0; r < warmup + runs; r++) {
-                Renderer renderer = new Renderer(s, new RenderPlan(s), Mode.FULL);
-                renderer.render(threads, null);
-                if (r >= warmup) {
-                    RenderStats st = renderer.stats();
-                    seconds[r - warmup] = renderer.renderNanos() / 1e9;
-                    rays = st.eyeRays + st.shadowRays;
-                    build = renderer.buildNanos();
+                for (int c = 0; c < k; c++) {
+                    Renderer renderer = new Renderer(s, new RenderPlan(s), Mode.FULL);
+                    renderer.render(threadCounts.get(c), null);
+                    if (r >= warmup) {
+                        RenderStats st = renderer.stats();
+                        seconds[c][r - warmup] = renderer.renderNanos() / 1e9;
+                        rays = st.eyeRays + st.shadowRays;
+                        build = renderer.buildNanos();
+                    }
                 }
             }
-            double[] sorted = seconds.clone();
-            Arrays.sort(sorted);
-            double median = runs % 2 == 1 ? sorted[runs / 2] : (sorted[runs / 2 - 1] + sorted[runs / 2]) / 2;
-            out.printf("| %s | %dx%d | %,d | %.3f s | %.3f - %.3f s | %,.0f | %.0f ms | %.1f ms |%n", scenes.get(i),
-                    s.width, s.height, s.primitiveCount(), median, sorted[0], sorted[runs - 1], rays / median,
-                    loadNanos.get(i) / 1e6, build / 1e6);
+            for (int c = 0; c < k; c++) {
+                double[] sorted = seconds[c].clone();
+                Arrays.sort(sorted);
+                double median = median(sorted);
+                out.printf("| %s | %dx%d | %,d | %d | %.3f s | %.3f - %.3f s | %,.0f | %s | %.0f ms | %.1f ms |%n",
+                        scenes.get(i), s.width, s.height, s.primitiveCount(), threadCounts.get(c), median, sorted[0],
+                        sorted[runs - 1], rays / median, c == 0 ? "" : speedUp(seconds[0], seconds[c]),
+                        loadNanos.get(i) / 1e6, build / 1e6);
+            }
             out.flush();
         }
         return Main.OK;
@@ -134,31 +153,57 @@ public final class BenchCommand implements Callable<Integer> {
         out.printf("mesh: %s, %,d triangles, %,d BVH nodes, %s kernel; parse %.0f ms, build %.0f ms%n", obj,
                 mesh.primitiveCount(), mesh.nodeCount(), mesh.usesPackedKernel() ? "packed" : "Triangle.intersect",
                 (t1 - t0) / 1e6, (t2 - t1) / 1e6);
-        out.printf("rays: %dx%d pixel centres (harness camera), %d thread%s, %d warm-up + %d timed passes each%n", w, h,
-                threads, threads == 1 ? "" : "s", warmup, runs);
+        out.printf("rays: %dx%d pixel centres (harness camera), threads %s, %d warm-up + %d timed passes each%s%n", w, h,
+                counts(), warmup, runs, threadCounts.size() > 1 ? ", thread counts in turns pass by pass" : "");
         out.flush();
+        int k = threadCounts.size();
         for (int r = 0; r < warmup; r++) {
-            bench.run(threads, true);
+            for (int t : threadCounts) {
+                bench.run(t, true);
+            }
         }
-        double[] primary = new double[runs];
-        double[] withShadows = new double[runs];
+        double[][] primary = new double[k][runs];
+        double[][] withShadows = new double[k][runs];
         MeshBench.Pass p = null;
         MeshBench.Pass ps = null;
         for (int r = 0; r < runs; r++) {
-            p = bench.run(threads, false);
-            ps = bench.run(threads, true);
-            primary[r] = p.mraysPerSecond();
-            withShadows[r] = ps.mraysPerSecond();
+            for (int c = 0; c < k; c++) {
+                p = bench.run(threadCounts.get(c), false);
+                ps = bench.run(threadCounts.get(c), true);
+                primary[c][r] = p.mraysPerSecond();
+                withShadows[c][r] = ps.mraysPerSecond();
+            }
         }
-        Arrays.sort(primary);
-        Arrays.sort(withShadows);
-        out.printf("{\"triangles\":%d,\"threads\":%d,\"build_ms\":%.1f,\"primary_mrays_s\":%.2f,"
-                + "\"primary_plus_shadow_mrays_s\":%.2f,\"primary_median\":%.2f,\"primary_min\":%.2f,"
-                + "\"shadow_median\":%.2f,\"hits\":%d,\"occluded\":%d}%n",
-                mesh.primitiveCount(), threads, (t2 - t1) / 1e6, primary[runs - 1], withShadows[runs - 1],
-                median(primary), primary[0], median(withShadows), p.hits(), ps.occluded());
+        for (int c = 0; c < k; c++) {
+            double[] sp = primary[c].clone();
+            double[] ss = withShadows[c].clone();
+            Arrays.sort(sp);
+            Arrays.sort(ss);
+            String scaling = "";
+            if (c > 0) {
+                // Throughputs: the speed-up is the ratio of c's rate to the first count's, pass by pass.
+                double[] ratio = PairedRatio.of(primary[c], primary[0], SEED);
+                scaling = String.format(",\"speedup_over_%d_threads\":%.2f,\"speedup_low\":%.2f,\"speedup_high\":%.2f",
+                        threadCounts.get(0), ratio[0], ratio[1], ratio[2]);
+            }
+            out.printf("{\"triangles\":%d,\"threads\":%d,\"build_ms\":%.1f,\"primary_mrays_s\":%.2f,"
+                    + "\"primary_plus_shadow_mrays_s\":%.2f,\"primary_median\":%.2f,\"primary_min\":%.2f,"
+                    + "\"shadow_median\":%.2f,\"hits\":%d,\"occluded\":%d%s}%n",
+                    mesh.primitiveCount(), threadCounts.get(c), (t2 - t1) / 1e6, sp[runs - 1], ss[runs - 1], median(sp),
+                    sp[0], median(ss), p.hits(), ps.occluded(), scaling);
+        }
         out.flush();
         return Main.OK;
+    }
+
+    private String counts() {
+        return threadCounts.stream().map(String::valueOf).collect(java.util.stream.Collectors.joining(","));
+    }
+
+    /** "1.93× (1.85–1.98)": how much faster than the first count, from the paired run times. */
+    private static String speedUp(double[] first, double[] other) {
+        double[] r = PairedRatio.of(first, other, SEED);
+        return String.format("%.2f× (%.2f–%.2f)", r[0], r[1], r[2]);
     }
 
     private static double median(double[] sorted) {

@@ -76,7 +76,7 @@ public final class ShadowOffsets {
      * hit point ({@link Numerics#pointError}), widened to the bound of the surface the shadow ray
      * meets when it meets one within that surface's own rounding error of x.
      */
-    public static boolean scaleAware(Surface scene, Vec3 x, Vec3 n, PointLight light,
+    public static boolean localOffset(Surface scene, Vec3 x, Vec3 n, PointLight light,
             IntersectionRecord scratch) {
         return Shadows.isShadowed(scene, x, n, light, scratch);
     }

@@ -128,6 +128,10 @@ final class AccelerationExperiment implements Experiment {
         Verdict[] verdicts = new Verdict[counts.length];
         int[] linearRays = new int[counts.length];
         Timing slow = study.quick ? study.timing : new Timing(0.1, 0.02, 9);
+        // The quick run's usual warm-up (0.05 s) left the BVH's code still being recompiled during
+        // its timed runs at small counts (runs at two speeds, and the crossover moved between two
+        // runs a minute apart); a longer one costs about 2 s in all.
+        Timing small = study.quick ? new Timing(0.25, 0.002, 15) : study.timing;
         for (int i = 0; i < counts.length; i++) {
             int n = counts[i];
             x[i] = n;
@@ -157,7 +161,7 @@ final class AccelerationExperiment implements Experiment {
             testsLinear[i] = a.tests / (double) few.length;
             testsBvh[i] = b.tests / (double) few.length;
             mismatch[i] = 100.0 * differ / few.length;
-            Timing t = n >= 30000 ? slow : study.timing;
+            Timing t = n >= 30000 ? slow : small;
             Timing.Stats[] both = t.nanosPerOpInterleaved(new Timing.Work[] {
                 reps -> trace(group, few, rec, reps), reps -> trace(tree[0], many, rec, reps)},
                 new long[] {few.length, many.length});

@@ -63,7 +63,7 @@ final class ShadowExperiment implements Experiment {
             case 5:
                 return ShadowOffsets.sceneGlobal(scene, x, n, light, scratch);
             default:
-                return ShadowOffsets.scaleAware(scene, x, n, light, scratch);
+                return ShadowOffsets.localOffset(scene, x, n, light, scratch);
         }
     }
 

@@ -5,6 +5,8 @@ import java.util.Arrays;
 import java.util.List;
 import java.util.SplittableRandom;
 
+import raylab.bench.PairedRatio;
+
 /**
  * Careful in-process timing that says how much to trust itself.
  *
@@ -90,10 +92,7 @@ final class Timing {
 
     /** Linear interpolation between order statistics of sorted s. */
     static double quantile(double[] s, double q) {
-        double pos = q * (s.length - 1);
-        int i = (int) Math.floor(pos);
-        int j = Math.min(s.length - 1, i + 1);
-        return s[i] + (pos - i) * (s[j] - s[i]);
+        return PairedRatio.quantile(s, q);
     }
 
     /** A cost ratio a/b: the median of the paired run ratios and its bootstrap 95% interval. */
@@ -126,46 +125,29 @@ final class Timing {
     static Ratio ratio(Stats a, Stats b) {
         double[] x = a.values();
         double[] y = b.values();
-        boolean paired = x.length == y.length;
-        SplittableRandom random = new SplittableRandom(Study.SEED ^ 0x5DEECE66DL);
+        long seed = Study.SEED ^ 0x5DEECE66DL;
+        if (x.length == y.length) {
+            double[] r = PairedRatio.of(x, y, seed);
+            return new Ratio(r[0], r[1], r[2]);
+        }
+        SplittableRandom random = new SplittableRandom(seed);
         int resamples = 2000;
         double[] medians = new double[resamples];
         double[] rx = new double[x.length];
         double[] ry = new double[y.length];
-        double[] r = new double[x.length];
         for (int k = 0; k < resamples; k++) {
-            if (paired) {
-                for (int i = 0; i < x.length; i++) {
-                    int j = random.nextInt(x.length);
-                    r[i] = x[j] / y[j];
-                }
-                Arrays.sort(r);
-                medians[k] = quantile(r, 0.5);
-            } else {
-                for (int i = 0; i < x.length; i++) {
-                    rx[i] = x[random.nextInt(x.length)];
-                }
-                for (int i = 0; i < y.length; i++) {
-                    ry[i] = y[random.nextInt(y.length)];
-                }
-                Arrays.sort(rx);
-                Arrays.sort(ry);
-                medians[k] = quantile(rx, 0.5) / quantile(ry, 0.5);
+            for (int i = 0; i < x.length; i++) {
+                rx[i] = x[random.nextInt(x.length)];
             }
+            for (int i = 0; i < y.length; i++) {
+                ry[i] = y[random.nextInt(y.length)];
+            }
+            Arrays.sort(rx);
+            Arrays.sort(ry);
+            medians[k] = quantile(rx, 0.5) / quantile(ry, 0.5);
         }
         Arrays.sort(medians);
-        double point;
-        if (paired) {
-            double[] all = new double[x.length];
-            for (int i = 0; i < x.length; i++) {
-                all[i] = x[i] / y[i];
-            }
-            Arrays.sort(all);
-            point = quantile(all, 0.5);
-        } else {
-            point = a.median() / b.median();
-        }
-        return new Ratio(point, quantile(medians, 0.025), quantile(medians, 0.975));
+        return new Ratio(a.median() / b.median(), quantile(medians, 0.025), quantile(medians, 0.975));
     }
 
     /** Work to time: {@code run(reps)} does reps repetitions and returns a checksum. */

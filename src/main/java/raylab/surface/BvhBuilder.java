@@ -40,6 +40,12 @@ final class BvhBuilder {
     private final double[] binBox = new double[6 * BINS];
     private final double[] left = new double[6];
     private final double[] right = new double[6];
+    private final double[] suffixBox = new double[6 * BINS];
+    private final int[] suffixCount = new int[BINS];
+    /** Written by {@link #bounds}: the node's box, then its centroids' box. */
+    private final double[] nodeBounds = new double[12];
+    /** Written by {@link #bestSplit}. */
+    private double bestCost;
 
     private BvhBuilder(double[] box, double[] cen, int[] order, int[] scratch) {
         this.box = box;
@@ -106,6 +112,52 @@ final class BvhBuilder {
     private int build(int lo, int hi, int level, boolean parallel) {
         int node = newNode();
         depth = Math.max(depth, level);
+        // Small methods, one pass each, so the JIT compiles them early in a large build.
+        bounds(lo, hi);
+        double[] nb = nodeBounds;
+        setBox(node, nb[0], nb[1], nb[2], nb[3], nb[4], nb[5]);
+        int n = hi - lo;
+        double ex = nb[9] - nb[6];
+        double ey = nb[10] - nb[7];
+        double ez = nb[11] - nb[8];
+        int axis = ex >= ey && ex >= ez ? 0 : ey >= ez ? 1 : 2;
+        double cmin = nb[6 + axis];
+        double cext = nb[9 + axis] - cmin;
+        if (n <= MAX_LEAF || !(cext > 0)) {
+            makeLeaf(node, lo, n);
+            return node;
+        }
+        binPrimitives(lo, hi, axis, cmin, cext);
+        int bestSplit = bestSplit();
+        double leafCost = n * halfArea(nb, 0);
+        if (bestSplit < 0 || (n <= 2 * MAX_LEAF && bestCost >= leafCost)) {
+            makeLeaf(node, lo, n);
+            return node;
+        }
+        int mid = partition(lo, hi, axis, cmin, cext, bestSplit);
+        int rightChild;
+        if (parallel && n >= PARALLEL_MIN) {
+            // Disjoint ranges of order and scratch; separate node arrays, appended in order.
+            BvhBuilder left = new BvhBuilder(box, cen, order, scratch);
+            BvhBuilder right = new BvhBuilder(box, cen, order, scratch);
+            ForkJoinTask.invokeAll(new Task(left, lo, mid, level + 1, true), new Task(right, mid, hi, level + 1, true));
+            append(left);
+            rightChild = count;
+            append(right);
+        } else {
+            build(lo, mid, level + 1, parallel);
+            rightChild = build(mid, hi, level + 1, parallel);
+        }
+        nodes[STRIDE * node + 6] = rightChild;
+        nodes[STRIDE * node + 7] = -(axis + 1);
+        return node;
+    }
+
+    /**
+     * The bounds of primitives lo..hi into {@link #nodeBounds}: their box (min x, y, z, max x, y,
+     * z), then the box of their centroids.
+     */
+    private void bounds(int lo, int hi) {
         double nx0 = Double.POSITIVE_INFINITY, ny0 = nx0, nz0 = nx0;
         double nx1 = Double.NEGATIVE_INFINITY, ny1 = nx1, nz1 = nx1;
         double cx0 = Double.POSITIVE_INFINITY, cy0 = cx0, cz0 = cx0;
@@ -137,18 +189,23 @@ final class BvhBuilder {
             cz0 = v < cz0 ? v : cz0;
             cz1 = v > cz1 ? v : cz1;
         }
-        setBox(node, nx0, ny0, nz0, nx1, ny1, nz1);
-        int n = hi - lo;
-        double ex = cx1 - cx0;
-        double ey = cy1 - cy0;
-        double ez = cz1 - cz0;
-        int axis = ex >= ey && ex >= ez ? 0 : ey >= ez ? 1 : 2;
-        double cmin = axis == 0 ? cx0 : axis == 1 ? cy0 : cz0;
-        double cext = (axis == 0 ? cx1 : axis == 1 ? cy1 : cz1) - cmin;
-        if (n <= MAX_LEAF || !(cext > 0)) {
-            makeLeaf(node, lo, n);
-            return node;
-        }
+        double[] nb = nodeBounds;
+        nb[0] = nx0;
+        nb[1] = ny0;
+        nb[2] = nz0;
+        nb[3] = nx1;
+        nb[4] = ny1;
+        nb[5] = nz1;
+        nb[6] = cx0;
+        nb[7] = cy0;
+        nb[8] = cz0;
+        nb[9] = cx1;
+        nb[10] = cy1;
+        nb[11] = cz1;
+    }
+
+    /** Counts primitives lo..hi per bin along the axis and grows each bin's box. */
+    private void binPrimitives(int lo, int hi, int axis, double cmin, double cext) {
         Arrays.fill(binCount, 0);
         for (int k = 0; k < BINS; k++) {
             setEmpty(binBox, 6 * k);
@@ -159,69 +216,57 @@ final class BvhBuilder {
             binCount[bin]++;
             unionInto(binBox, 6 * bin, box, 6 * p);
         }
-        double bestCost = Double.POSITIVE_INFINITY;
-        int bestSplit = -1;
+    }
+
+    /**
+     * The split (1 to BINS − 1: bins below it go left) of least surface area cost, the first of
+     * equal ones, or −1 if every split leaves a side empty; its cost goes to {@link #bestCost}.
+     * Every split's two boxes come from one sweep from each end (a union of boxes is exact, so
+     * they are the boxes a union from scratch gives).
+     */
+    private int bestSplit() {
+        setEmpty(right, 0);
+        int nr = 0;
+        for (int k = BINS - 1; k >= 1; k--) {
+            unionInto(right, 0, binBox, 6 * k);
+            nr += binCount[k];
+            System.arraycopy(right, 0, suffixBox, 6 * k, 6);
+            suffixCount[k] = nr;
+        }
+        setEmpty(left, 0);
+        int nl = 0;
+        bestCost = Double.POSITIVE_INFINITY;
+        int best = -1;
         for (int split = 1; split < BINS; split++) {
-            setEmpty(left, 0);
-            setEmpty(right, 0);
-            int nl = 0;
-            int nr = 0;
-            for (int k = 0; k < split; k++) {
-                unionInto(left, 0, binBox, 6 * k);
-                nl += binCount[k];
-            }
-            for (int k = split; k < BINS; k++) {
-                unionInto(right, 0, binBox, 6 * k);
-                nr += binCount[k];
-            }
+            unionInto(left, 0, binBox, 6 * (split - 1));
+            nl += binCount[split - 1];
+            nr = suffixCount[split];
             if (nl == 0 || nr == 0) {
                 continue;
             }
-            double cost = nl * halfArea(left, 0) + nr * halfArea(right, 0);
+            double cost = nl * halfArea(left, 0) + nr * halfArea(suffixBox, 6 * split);
             if (cost < bestCost) {
                 bestCost = cost;
-                bestSplit = split;
+                best = split;
             }
         }
-        left[0] = nx0;
-        left[1] = ny0;
-        left[2] = nz0;
-        left[3] = nx1;
-        left[4] = ny1;
-        left[5] = nz1;
-        double leafCost = n * halfArea(left, 0);
-        if (bestSplit < 0 || (n <= 2 * MAX_LEAF && bestCost >= leafCost)) {
-            makeLeaf(node, lo, n);
-            return node;
-        }
-        // Stable partition by bin (left ones in place, right ones through the scratch array).
+        return best;
+    }
+
+    /** Stable partition of lo..hi by bin (left ones in place, right ones through the scratch array); returns the first right one. */
+    private int partition(int lo, int hi, int axis, double cmin, double cext, int split) {
         int mid = lo;
         int r = 0;
         for (int i = lo; i < hi; i++) {
             int p = order[i];
-            if (binOf(cen[3 * p + axis], cmin, cext) < bestSplit) {
+            if (binOf(cen[3 * p + axis], cmin, cext) < split) {
                 order[mid++] = p;
             } else {
                 scratch[lo + r++] = p;
             }
         }
         System.arraycopy(scratch, lo, order, mid, r);
-        int rightChild;
-        if (parallel && n >= PARALLEL_MIN) {
-            // Disjoint ranges of order and scratch; separate node arrays, appended in order.
-            BvhBuilder left = new BvhBuilder(box, cen, order, scratch);
-            BvhBuilder right = new BvhBuilder(box, cen, order, scratch);
-            ForkJoinTask.invokeAll(new Task(left, lo, mid, level + 1, true), new Task(right, mid, hi, level + 1, true));
-            append(left);
-            rightChild = count;
-            append(right);
-        } else {
-            build(lo, mid, level + 1, parallel);
-            rightChild = build(mid, hi, level + 1, parallel);
-        }
-        nodes[STRIDE * node + 6] = rightChild;
-        nodes[STRIDE * node + 7] = -(axis + 1);
-        return node;
+        return mid;
     }
 
     /** Appends a subtree built by another builder, shifting its node references. */

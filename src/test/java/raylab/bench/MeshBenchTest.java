@@ -51,12 +51,23 @@ class MeshBenchTest {
         assertTrue(fast.hits() > 64 * 48 / 4 && fast.occluded() > 0, "the view sees the mesh and its shadows: " + fast);
     }
 
-    @Test
-    void benchObjPrintsTheCountsAsJson(@TempDir Path tmp) throws Exception {
+    /** A level-2 icosphere (320 triangles) written as an OBJ file. */
+    private static Path ico2(Path tmp) throws Exception {
         Path file = tmp.resolve("ico2.obj");
         Files.writeString(file, obj(Icosphere.triangles(2)));
+        return file;
+    }
+
+    /** The counts of one 40×30 pass with shadows over the file's mesh, traced here directly. */
+    private static MeshBench.Pass expectedPass(Path file) throws Exception {
         double[] tris = ObjLoader.read(file, "ico2.obj").triangleVertices();
-        MeshBench.Pass expected = new MeshBench(new Mesh(tris, MeshBench.GREY, "m"), 40, 30).run(1, true);
+        return new MeshBench(new Mesh(tris, MeshBench.GREY, "m"), 40, 30).run(1, true);
+    }
+
+    @Test
+    void benchObjPrintsTheCountsAsJson(@TempDir Path tmp) throws Exception {
+        Path file = ico2(tmp);
+        MeshBench.Pass expected = expectedPass(file);
         StringWriter out = new StringWriter();
         StringWriter err = new StringWriter();
         int status = Main.run(new PrintWriter(out, true), new PrintWriter(err, true), "bench", "--obj", file.toString(), "--size", "40x30", "--runs", "1", "--warmup", "0",
@@ -67,5 +78,31 @@ class MeshBenchTest {
         assertTrue(json.startsWith("{\"triangles\":320,\"threads\":2,"), json);
         assertTrue(json.contains("\"hits\":" + expected.hits() + ","), json + " vs " + expected);
         assertTrue(json.endsWith("\"occluded\":" + expected.occluded() + "}"), json + " vs " + expected);
+    }
+
+    @Test
+    void benchObjComparesThreadCountsTakenInTurns(@TempDir Path tmp) throws Exception {
+        Path file = ico2(tmp);
+        MeshBench.Pass expected = expectedPass(file);
+        StringWriter out = new StringWriter();
+        StringWriter err = new StringWriter();
+        int status = Main.run(new PrintWriter(out, true), new PrintWriter(err, true), "bench", "--obj", file.toString(), "--size",
+                "40x30", "--runs", "3", "--warmup", "0", "--threads", "1,2,3");
+        assertEquals(0, status, out + "\n" + err);
+        List<String> json = out.toString().lines().filter(l -> l.startsWith("{")).toList();
+        assertEquals(3, json.size(), "one line per thread count: " + out);
+        for (int i = 0; i < 3; i++) {
+            String line = json.get(i);
+            assertTrue(line.startsWith("{\"triangles\":320,\"threads\":" + (i + 1) + ","), line);
+            // Every count traces the same rays, so the counts agree whatever the threads.
+            assertTrue(line.contains("\"hits\":" + expected.hits() + ","), line + " vs " + expected);
+            assertTrue(line.contains("\"occluded\":" + expected.occluded()), line + " vs " + expected);
+            assertEquals(i > 0, line.contains("\"speedup_over_1_threads\":"), "a speed-up for every count but the first: " + line);
+        }
+        StringWriter err2 = new StringWriter();
+        int refused = Main.run(new PrintWriter(new StringWriter(), true), new PrintWriter(err2, true), "bench", "--obj",
+                file.toString(), "--runs", "1", "--threads", "1,2");
+        assertEquals(2, refused, "a comparison from one run has no interval: " + err2);
+        assertEquals(1, err2.toString().lines().count(), err2.toString());
     }
 }

@@ -177,7 +177,7 @@ class ShadowNumericsTest {
     @MethodSource("scales")
     void referenceHasNoAcneAndNoLeaks(double s, double translation) {
         long seed = Double.hashCode(s) * 131L + Double.hashCode(translation);
-        Counts k = run(ShadowOffsets::scaleAware, seed, s, translation, 3);
+        Counts k = run(ShadowOffsets::localOffset, seed, s, translation, 3);
         Counts global = run(ShadowOffsets::sceneGlobal, seed, s, translation, 3);
         Counts fixed = run(ShadowOffsets::fixedEpsilon, seed, s, translation, 3);
         Counts xOnly = run(ShadowOffsets::hitPointScaled, seed, s, translation, 3);
@@ -199,7 +199,7 @@ class ShadowNumericsTest {
     void fixedEpsilonLeaksAtSmallScale() {
         Counts k = run(ShadowOffsets::fixedEpsilon, 99, 1e-4, 0, 3);
         assertEquals(k.leakCases, k.leaks, "seed 99: fixed epsilon at scale 1e-4: " + k);
-        Counts ref = run(ShadowOffsets::scaleAware, 99, 1e-4, 0, 3);
+        Counts ref = run(ShadowOffsets::localOffset, 99, 1e-4, 0, 3);
         assertEquals(0, ref.leaks, "seed 99: the reference at scale 1e-4: " + ref);
     }
 
@@ -210,7 +210,7 @@ class ShadowNumericsTest {
         Counts k = run(ShadowOffsets::fixedEpsilon, 96, 1, 1e10, 3);
         System.out.printf("shadows s=1 T=1e10: fixed 1e-6 acne %d of %d%n", k.acne, k.acneCases);
         assertTrue(k.acne > 0, "seed 96: expected acne for fixed epsilon at 1e10: " + k);
-        Counts ref = run(ShadowOffsets::scaleAware, 96, 1, 1e10, 3);
+        Counts ref = run(ShadowOffsets::localOffset, 96, 1, 1e10, 3);
         assertEquals(0, ref.acne, "seed 96: the reference at 1e10: " + ref);
     }
 
@@ -238,7 +238,7 @@ class ShadowNumericsTest {
     @org.junit.jupiter.params.provider.ValueSource(doubles = {0, 1e3})
     void farObjectDoesNotMakeTheLeafLeak(double translation) {
         long seed = 1012 + (long) translation;
-        Counts local = run(ShadowOffsets::scaleAware, seed, 1, translation, 3, 1e12);
+        Counts local = run(ShadowOffsets::localOffset, seed, 1, translation, 3, 1e12);
         Counts global = run(ShadowOffsets::sceneGlobal, seed, 1, translation, 3, 1e12);
         System.out.printf("shadows, object 1e12 away, T=%g: local acne %d/%d leaks %d/%d;"
                 + " scene-global acne %d leaks %d%n", translation, local.acne, local.acneCases,

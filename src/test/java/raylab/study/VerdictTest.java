@@ -192,4 +192,20 @@ class VerdictTest {
         // A BVH that changes answers is outside the tolerance, however fast.
         assertEquals("the linear group", AccelerationExperiment.decide(0.5, runs(50000, 0.02, 5), runs(900, 0.02, 6)).recommended());
     }
+
+    @Test
+    void planVerdictCallsSameWorkWhateverTheClockSays() {
+        Timing.Stats[] cost = costs(10, 30);
+        // The same image and the same counted work: a clock that says 3× either way changes nothing.
+        assertEquals(PlanExperiment.SAME_WORK, PlanExperiment.sceneVerdict(0, 5, 5, 100, 100, cost[0], cost[1]));
+        assertEquals(PlanExperiment.SAME_WORK, PlanExperiment.sceneVerdict(0, 5, 5, 100, 100, cost[1], cost[0]));
+        // Less work for the plan: the rule on time decides, and swapping the times flips it.
+        assertEquals("the plan", PlanExperiment.sceneVerdict(0, 5, 5, 40, 100, cost[0], cost[1]));
+        assertEquals("brute force", PlanExperiment.sceneVerdict(0, 5, 9, 40, 100, cost[1], cost[0]));
+        Timing.Stats a = runs(10, 0.3, 7);
+        Timing.Stats b = runs(10, 0.3, 8);
+        assertEquals(Verdict.TOO_CLOSE, PlanExperiment.sceneVerdict(0, 0, 0, 40, 100, a, b));
+        // A differing image is never the same work, and the plan is then out.
+        assertEquals("brute force", PlanExperiment.sceneVerdict(0.5, 5, 5, 100, 100, cost[0], cost[1]));
+    }
 }
