@@ -24,11 +24,14 @@ import raylab.ray.IntersectionRecord;
 import raylab.ray.Ray;
 import raylab.surface.Bvh;
 import raylab.surface.Mesh;
+import raylab.surface.Surface;
 import raylab.surface.Triangle;
 
 /**
  * Nanoseconds per ray of the packed mesh engine on the Embree harness's mesh (displaced
- * icosphere, level 6 = 81,920 triangles, or level 4), against the generic object tree
+ * icosphere, level 6 = 81,920 triangles, or level 4): eye rays in a random order, in pixel order
+ * and one ray repeated (which separates the cost of the arithmetic from that of cache misses and
+ * mispredicted branches), against the generic object tree
  * ({@link Bvh} over {@link Triangle} objects, which is what the student path traces), and per
  * test of the triangle kernels: the packed kernel (a one-triangle mesh) and Triangle.intersect.
  *
@@ -51,6 +54,8 @@ public class MeshBenchmark {
     Mesh mesh;
     Bvh objects;
     Ray[] primary = new Ray[RAYS];
+    Ray[] pixelOrder = new Ray[RAYS];
+    Ray[] sameRay = new Ray[RAYS];
     Ray[] shadow = new Ray[RAYS];
     Mesh oneTriangle;
     Triangle triangle;
@@ -71,6 +76,14 @@ public class MeshBenchmark {
             Vec3 p = mesh.intersect(h, primary[i]) ? h.point : new Vec3(0, 0, 1.5);
             shadow[i] = new Ray(p, new Vec3(3, 4, 5).minus(p), 1e-4, 1);
         }
+        // The harness's eye rays of four whole rows across the middle of the 1024 x 768 image, in
+        // pixel order (coherent: neighbours share their path through the tree), and the middle
+        // pixel's ray RAYS times (its nodes and triangles stay in cache, every branch repeats).
+        MeshBench harness = new MeshBench(mesh, 1024, 768);
+        for (int i = 0; i < RAYS; i++) {
+            pixelOrder[i] = harness.primaryRay(i % 1024, 382 + i / 1024);
+            sameRay[i] = harness.primaryRay(512, 384);
+        }
         Vec3 a = new Vec3(-1, -1, 0);
         Vec3 b = new Vec3(1, -1, 0.2);
         Vec3 c = new Vec3(0, 1, -0.1);
@@ -85,12 +98,19 @@ public class MeshBenchmark {
     @Benchmark
     @OperationsPerInvocation(RAYS)
     public int packedClosestHit() {
-        int hits = 0;
-        for (Ray ray : primary) {
-            rec.reset();
-            hits += mesh.intersect(rec, ray) ? 1 : 0;
-        }
-        return hits;
+        return closestHits(mesh, primary);
+    }
+
+    @Benchmark
+    @OperationsPerInvocation(RAYS)
+    public int packedPixelOrder() {
+        return closestHits(mesh, pixelOrder);
+    }
+
+    @Benchmark
+    @OperationsPerInvocation(RAYS)
+    public int packedSameRay() {
+        return closestHits(mesh, sameRay);
     }
 
     @Benchmark
@@ -106,32 +126,27 @@ public class MeshBenchmark {
     @Benchmark
     @OperationsPerInvocation(RAYS)
     public int objectTreeClosestHit() {
-        int hits = 0;
-        for (Ray ray : primary) {
-            rec.reset();
-            hits += objects.intersect(rec, ray) ? 1 : 0;
-        }
-        return hits;
+        return closestHits(objects, primary);
     }
 
     @Benchmark
     @OperationsPerInvocation(RAYS)
     public int packedKernel() {
-        int hits = 0;
-        for (Ray ray : triangleRays) {
-            rec.reset();
-            hits += oneTriangle.intersect(rec, ray) ? 1 : 0;
-        }
-        return hits;
+        return closestHits(oneTriangle, triangleRays);
     }
 
     @Benchmark
     @OperationsPerInvocation(RAYS)
     public int triangleIntersect() {
+        return closestHits(triangle, triangleRays);
+    }
+
+    /** Closest hits of the rays on the surface, each traced from a reset record. */
+    private int closestHits(Surface surface, Ray[] rays) {
         int hits = 0;
-        for (Ray ray : triangleRays) {
+        for (Ray ray : rays) {
             rec.reset();
-            hits += triangle.intersect(rec, ray) ? 1 : 0;
+            hits += surface.intersect(rec, ray) ? 1 : 0;
         }
         return hits;
     }

@@ -65,6 +65,20 @@ public final class MeshBench {
         return new float[] {x * s, y * s, z * s};
     }
 
+    /** The eye ray through the centre of pixel (x, y), as the harness makes it (in float). */
+    public Ray primaryRay(int x, int y) {
+        return primaryRay(new Vec3(EYE_X, EYE_Y, EYE_Z), x, y);
+    }
+
+    private Ray primaryRay(Vec3 eye, int x, int y) {
+        float sx = (2 * (x + 0.5f) / width - 1) * tw;
+        float sy = (1 - 2 * (y + 0.5f) / height) * th;
+        float dx = ux * sx + vx * sy + wx * -1;
+        float dy = uy * sx + vy * sy + wy * -1;
+        float dz = uz * sx + vz * sy + wz * -1;
+        return new Ray(eye, new Vec3(dx, dy, dz));
+    }
+
     /** One pass over all pixels with {@code threads} threads; shadow rays when {@code shadows}. */
     public Pass run(int threads, boolean shadows) {
         long[][] counts = new long[threads][];
@@ -107,12 +121,7 @@ public final class MeshBench {
         long occluded = 0;
         for (int y = first; y < height; y += step) {
             for (int x = 0; x < width; x++) {
-                float sx = (2 * (x + 0.5f) / width - 1) * tw;
-                float sy = (1 - 2 * (y + 0.5f) / height) * th;
-                float dx = ux * sx + vx * sy + wx * -1;
-                float dy = uy * sx + vy * sy + wy * -1;
-                float dz = uz * sx + vz * sy + wz * -1;
-                Ray ray = new Ray(eye, new Vec3(dx, dy, dz));
+                Ray ray = primaryRay(eye, x, y);
                 rec.reset();
                 if (!scene.intersect(rec, ray)) {
                     continue;
@@ -122,9 +131,9 @@ public final class MeshBench {
                     continue;
                 }
                 float t = (float) rec.t;
-                float px = EYE_X + dx * t;
-                float py = EYE_Y + dy * t;
-                float pz = EYE_Z + dz * t;
+                float px = EYE_X + (float) ray.d.x * t;
+                float py = EYE_Y + (float) ray.d.y * t;
+                float pz = EYE_Z + (float) ray.d.z * t;
                 Ray shadow = new Ray(new Vec3(px, py, pz), new Vec3(LIGHT_X - px, LIGHT_Y - py, LIGHT_Z - pz),
                         1e-4f, 1.0);
                 if (scene.intersectsAny(shadow, scratch)) {

@@ -93,12 +93,18 @@ class GraderTest {
 
     /** Runs raylab grade with small limits and returns results.json. */
     private JsonNode grade(Path sub, String... extra) throws IOException {
+        return grade(sub, 40, 25, extra);
+    }
+
+    /** As above, with the given time limits (seconds) of a milestone's tests and of one scene render. */
+    private JsonNode grade(Path sub, int milestoneSeconds, int sceneSeconds, String... extra) throws IOException {
         Path out = dir.resolve("out");
         Files.createDirectories(out);
         ByteArrayOutputStream err = new ByteArrayOutputStream();
         String[] base = {"grade", sub.toString(), "--out", out.toString(), "--root", root.toString(), "--quiet",
-            "--test-timeout", "2", "--milestone-timeout", "40", "--scene-timeout", "25", "--heap", "256",
-            "--sandbox-user", sandboxUser()};
+            "--test-timeout", "2", "--milestone-timeout", Integer.toString(milestoneSeconds),
+            "--scene-timeout", Integer.toString(sceneSeconds),
+            "--heap", "256", "--sandbox-user", sandboxUser()};
         String[] args = new String[base.length + extra.length];
         System.arraycopy(base, 0, args, 0, base.length);
         System.arraycopy(extra, 0, args, base.length, extra.length);
@@ -266,7 +272,9 @@ class GraderTest {
     @Test
     @Order(6)
     void hostileSubmissionsLoopExhaustMemoryRecurseAndLeaveThreads() throws IOException {
-        JsonNode r = grade(submission("hostile2"), "--milestone", "sphere", "--milestone", "box",
+        // The endless loops run until their time limits, so these are short: 15 s for a milestone's
+        // tests and 8 s a scene (the whole of lambert, tests and renders, takes about 4 s here).
+        JsonNode r = grade(submission("hostile2"), 15, 8, "--milestone", "sphere", "--milestone", "box",
                 "--milestone", "triangle", "--milestone", "lambert");
         Map<String, double[]> m = perMilestone(r);
         assertZero(r, m, "sphere", "box", "triangle");
