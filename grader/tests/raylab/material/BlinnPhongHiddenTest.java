@@ -7,6 +7,7 @@ import static raylab.hidden.Hidden.within;
 
 import java.util.SplittableRandom;
 
+import org.junit.jupiter.api.DisplayName;
 import org.junit.jupiter.api.Tag;
 import org.junit.jupiter.api.Test;
 
@@ -35,6 +36,7 @@ class BlinnPhongHiddenTest {
     }
 
     @Test
+    @DisplayName("random v and l: L_s = ks·I·max(0, n·h)^p")
     void randomViewAndLightDirections() {
         long seed = 0xb11eL;
         SplittableRandom r = Hidden.rng(seed);
@@ -54,6 +56,7 @@ class BlinnPhongHiddenTest {
     }
 
     @Test
+    @DisplayName("mirror direction (h = n): the full highlight ks·I")
     void mirrorDirectionGivesTheFullHighlight() {
         Vec3 n = new Vec3(0, 1, 0);
         Vec3 l = new Vec3(1, 1, 0).normalize();
@@ -64,6 +67,7 @@ class BlinnPhongHiddenTest {
     }
 
     @Test
+    @DisplayName("h = (v + l) / ‖v + l‖ must be normalized")
     void halfVectorMustBeNormalized() {
         Vec3 n = new Vec3(0, 0, 1);
         Vec3 l = new Vec3(0, 0, 1);
@@ -77,6 +81,7 @@ class BlinnPhongHiddenTest {
     }
 
     @Test
+    @DisplayName("the exponent p sets the size of the highlight")
     void exponentControlsTheHighlightSize() {
         Vec3 n = new Vec3(0, 0, 1);
         Vec3 l = new Vec3(0, Math.sin(0.4), Math.cos(0.4));
@@ -92,6 +97,7 @@ class BlinnPhongHiddenTest {
     }
 
     @Test
+    @DisplayName("L_s uses ks only, not kd or ka")
     void specularIgnoresKdAndKa() {
         Vec3 n = new Vec3(0, 0, 1);
         BlinnPhong m = new BlinnPhong(new Color(0.9, 0.9, 0.9), new Color(0.1, 0.2, 0.3), 8,
@@ -101,6 +107,7 @@ class BlinnPhongHiddenTest {
     }
 
     @Test
+    @DisplayName("a coloured light tints the highlight, channel by channel")
     void coloredLightTintsTheHighlight() {
         Vec3 n = new Vec3(0, 0, 1);
         BlinnPhong m = new BlinnPhong(Color.BLACK, new Color(1, 1, 1), 8, Color.BLACK, "m");

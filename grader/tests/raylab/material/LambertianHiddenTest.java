@@ -6,6 +6,7 @@ import static raylab.hidden.Hidden.unit;
 
 import java.util.SplittableRandom;
 
+import org.junit.jupiter.api.DisplayName;
 import org.junit.jupiter.api.Tag;
 import org.junit.jupiter.api.Test;
 
@@ -21,6 +22,7 @@ class LambertianHiddenTest {
     }
 
     @Test
+    @DisplayName("random lit directions: L_d = kd·I·max(0, n·l), channel by channel")
     void randomLitDirectionsChannelByChannel() {
         long seed = 0x1a3bL;
         SplittableRandom r = Hidden.rng(seed);
@@ -40,6 +42,7 @@ class LambertianHiddenTest {
     }
 
     @Test
+    @DisplayName("light straight above (n·l = 1): L_d = kd·I")
     void lightStraightAboveGivesKdTimesI() {
         Lambertian m = new Lambertian(new Color(0.2, 0.4, 0.8), new Color(0.5, 0.5, 0.5), "m");
         Vec3 n = new Vec3(0, 0, 1);
@@ -48,6 +51,7 @@ class LambertianHiddenTest {
     }
 
     @Test
+    @DisplayName("light at 60° from n: n·l = 0.5 halves L_d")
     void lightAtSixtyDegreesHalvesIt() {
         Lambertian m = new Lambertian(new Color(1, 0.5, 0.25), Color.BLACK, "m");
         Vec3 n = new Vec3(0, 1, 0);
@@ -57,6 +61,7 @@ class LambertianHiddenTest {
     }
 
     @Test
+    @DisplayName("light below the horizon (n·l < 0): black")
     void lightBelowTheHorizonGivesBlack() {
         long seed = 0xb1acL;
         SplittableRandom r = Hidden.rng(seed);
@@ -73,6 +78,7 @@ class LambertianHiddenTest {
     }
 
     @Test
+    @DisplayName("the ambient term ka·Ia is not part of L_d")
     void ambientIsNotPartOfDiffuse() {
         Lambertian m = new Lambertian(new Color(0.5, 0.5, 0.5), new Color(0.9, 0.1, 0.3), "m");
         Vec3 n = new Vec3(1, 0, 0);
@@ -82,6 +88,7 @@ class LambertianHiddenTest {
     }
 
     @Test
+    @DisplayName("I = 0 gives black, a green light lights only the green channel")
     void blackLightGivesBlack() {
         Lambertian m = new Lambertian(new Color(0.7, 0.7, 0.7), Color.BLACK, "m");
         Vec3 n = new Vec3(0, 0, 1);

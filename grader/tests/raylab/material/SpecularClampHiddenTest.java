@@ -6,6 +6,7 @@ import static raylab.hidden.Hidden.unit;
 
 import java.util.SplittableRandom;
 
+import org.junit.jupiter.api.DisplayName;
 import org.junit.jupiter.api.Tag;
 import org.junit.jupiter.api.Test;
 
@@ -26,6 +27,7 @@ class SpecularClampHiddenTest {
     private static final double[] EXPONENTS = {2, 4, 10, 64, 100, 0.5, 1.5, 2.5, 7.25, 33.3};
 
     @Test
+    @DisplayName("n·h < 0: no highlight, whatever the exponent p")
     void halfVectorBelowTheSurfaceGivesNoHighlightForAnyExponent() {
         long seed = 0xc1a3bL;
         SplittableRandom r = Hidden.rng(seed);

@@ -9,6 +9,7 @@ import static raylab.hidden.Hidden.within;
 import java.util.List;
 import java.util.SplittableRandom;
 
+import org.junit.jupiter.api.DisplayName;
 import org.junit.jupiter.api.Tag;
 import org.junit.jupiter.api.Test;
 
@@ -68,6 +69,7 @@ class CloseBlockersHiddenTest {
     }
 
     @Test
+    @DisplayName("a thin blocker just above the point casts a shadow")
     void aThinBlockerJustAboveThePointCastsAShadow() {
         long seed = 0xc105eL;
         SplittableRandom r = Hidden.rng(seed);
@@ -89,6 +91,7 @@ class CloseBlockersHiddenTest {
     }
 
     @Test
+    @DisplayName("a thin blocker just before the light casts a shadow")
     void aThinBlockerJustBeforeTheLightCastsAShadow() {
         long seed = 0xc10519L;
         SplittableRandom r = Hidden.rng(seed);

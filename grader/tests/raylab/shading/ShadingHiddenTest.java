@@ -11,6 +11,7 @@ import java.util.List;
 import java.util.Set;
 import java.util.SplittableRandom;
 
+import org.junit.jupiter.api.DisplayName;
 import org.junit.jupiter.api.Tag;
 import org.junit.jupiter.api.Test;
 
@@ -73,6 +74,7 @@ class ShadingHiddenTest {
     }
 
     @Test
+    @DisplayName("random points, lights and blockers: L = ka·Ia + Σ over visible lights of kd·I·max(0, n·l) + ks·I·max(0, n·h)^p")
     void randomPointsLightsAndShadowsSumLikeTheLecture() {
         long seed = 0x5ad1L;
         SplittableRandom r = Hidden.rng(seed);
@@ -111,6 +113,7 @@ class ShadingHiddenTest {
     }
 
     @Test
+    @DisplayName("lights exactly at the point or on the horizon add nothing")
     void lightsExactlyAtThePointOrOnTheHorizonAddNothing() {
         Lambertian m = new Lambertian(new Color(0.5, 0.5, 0.5), new Color(0.1, 0.2, 0.3), "m");
         Vec3 x = new Vec3(1, 2, 3);

@@ -10,6 +10,7 @@ import static raylab.hidden.Hidden.within;
 import java.util.List;
 import java.util.SplittableRandom;
 
+import org.junit.jupiter.api.DisplayName;
 import org.junit.jupiter.api.Tag;
 import org.junit.jupiter.api.Test;
 
@@ -40,6 +41,7 @@ class ShadowsHiddenTest {
     }
 
     @Test
+    @DisplayName("a blocker between the point and the light casts a shadow")
     void blockerBetweenPointAndLightCastsAShadow() {
         long seed = 0x5bad0L;
         SplittableRandom r = Hidden.rng(seed);
@@ -61,6 +63,7 @@ class ShadowsHiddenTest {
     }
 
     @Test
+    @DisplayName("no self-shadowing (acne) on curved surfaces")
     void noSelfShadowOnCurvedSurfaces() {
         long seed = 0xac9eL;
         SplittableRandom r = Hidden.rng(seed);
@@ -78,6 +81,7 @@ class ShadowsHiddenTest {
     }
 
     @Test
+    @DisplayName("no self-shadowing (acne) on flat surfaces")
     void noSelfShadowOnFlatSurfaces() {
         Box floor = new Box(new Vec3(-10, -1, -10), new Vec3(10, 0, 10), M, "floor");
         Triangle tri = new Triangle(new Vec3(-5, 3, -5), new Vec3(5, 3, -5), new Vec3(0, 3, 5), M, "triangle");
@@ -102,6 +106,7 @@ class ShadowsHiddenTest {
     }
 
     @Test
+    @DisplayName("a blocker beyond the light casts no shadow")
     void blockerBeyondTheLightCastsNoShadow() {
         Box ground = new Box(new Vec3(-50, -1, -50), new Vec3(50, 0, 50), M, "ground");
         Sphere beyond = new Sphere(new Vec3(0, 10, 0), 2, M, "beyond the light");
@@ -115,6 +120,7 @@ class ShadowsHiddenTest {
     }
 
     @Test
+    @DisplayName("a blocker just before the light casts a shadow")
     void blockerJustBeforeTheLightCastsAShadow() {
         Box ground = new Box(new Vec3(-50, -1, -50), new Vec3(50, 0, 50), M, "ground");
         Sphere near = new Sphere(new Vec3(0, 9, 0), 0.5, M, "just below the light");
@@ -128,6 +134,7 @@ class ShadowsHiddenTest {
     }
 
     @Test
+    @DisplayName("a light 80 away behind a blocker at 40: shadowed (t = 1 is the light, not tMax = 1 on a unit d)")
     void farLightBehindABlockerOfTheSameRay() {
         // The light is 80 units away: a shadow ray with a unit-length direction and tMax = 1 would stop short.
         Sphere blocker = new Sphere(new Vec3(0, 40, 0), 3, M, "blocker");
@@ -140,6 +147,7 @@ class ShadowsHiddenTest {
     }
 
     @Test
+    @DisplayName("a blocker behind the point casts no shadow")
     void blockerBehindThePointCastsNoShadow() {
         Sphere behind = new Sphere(new Vec3(0, -5, 0), 2, M, "behind");
         Vec3 x = new Vec3(0, 0, 0);
@@ -151,6 +159,7 @@ class ShadowsHiddenTest {
     }
 
     @Test
+    @DisplayName("a light on the far side of a closed surface is blocked")
     void lightOnTheFarSideOfAClosedSurfaceIsBlocked() {
         Sphere ball = new Sphere(new Vec3(0, 0, 0), 1, M, "ball");
         Vec3 x = new Vec3(0, 1, 0);
@@ -162,6 +171,7 @@ class ShadowsHiddenTest {
     }
 
     @Test
+    @DisplayName("each of several lights gets its own shadow ray")
     void severalLightsAreTestedOneByOne() {
         Box ground = new Box(new Vec3(-50, -1, -50), new Vec3(50, 0, 50), M, "ground");
         Box wall = new Box(new Vec3(2, 0, -5), new Vec3(2.5, 10, 5), M, "wall");
@@ -182,6 +192,7 @@ class ShadowsHiddenTest {
     }
 
     @Test
+    @DisplayName("a light 0.05 above the floor still lights it")
     void lightVeryCloseToTheSurface() {
         Box floor = new Box(new Vec3(-10, -1, -10), new Vec3(10, 0, 10), M, "floor");
         Vec3 x = new Vec3(1, 0, 2);
@@ -193,6 +204,7 @@ class ShadowsHiddenTest {
     }
 
     @Test
+    @DisplayName("lamps lying on a face are not blocked by it (it meets the shadow ray at the light, t = 1)")
     void lampsLyingOnAFaceAreNotBlockedByIt() {
         // Lamps exactly on the top face y = 0 of a floor box; points on balls above it. The floor
         // meets each shadow ray at t = 1, the light itself, which is not a blocker (0 < t < 1).
@@ -218,6 +230,7 @@ class ShadowsHiddenTest {
     }
 
     @Test
+    @DisplayName("points on a contact line are not blocked by the touching box")
     void pointsOnAContactLineAreNotBlockedByTheTouchingBox() {
         // A box stands on the floor; points on the floor exactly along the foot of its face x = 1,
         // lights on the open side: the box touches each shadow ray only at t = 0.

@@ -12,6 +12,7 @@ import static raylab.hidden.Hidden.within;
 
 import java.util.SplittableRandom;
 
+import org.junit.jupiter.api.DisplayName;
 import org.junit.jupiter.api.Tag;
 import org.junit.jupiter.api.Test;
 
@@ -51,6 +52,7 @@ class BoxHiddenTest {
     }
 
     @Test
+    @DisplayName("random rays from outside enter through the right face")
     void randomRaysFromOutsideEnterThroughTheRightFace() {
         long seed = 0xb0c5L;
         SplittableRandom r = Hidden.rng(seed);
@@ -71,6 +73,7 @@ class BoxHiddenTest {
     }
 
     @Test
+    @DisplayName("random rays from inside leave through the right face")
     void randomRaysFromInsideLeaveThroughTheRightFace() {
         long seed = 0x1b51deL;
         SplittableRandom r = Hidden.rng(seed);
@@ -91,6 +94,7 @@ class BoxHiddenTest {
     }
 
     @Test
+    @DisplayName("rays parallel to an axis (components of d equal to 0)")
     void axisParallelRays() {
         Box b = new Box(new Vec3(-1, -2, -3), new Vec3(1, 2, 3), M, "box");
         for (int axis = 0; axis < 3; axis++) {
@@ -116,6 +120,7 @@ class BoxHiddenTest {
     }
 
     @Test
+    @DisplayName("rays passing beside the box miss")
     void raysPassingBesideTheBoxMiss() {
         long seed = 0xbe5dL;
         SplittableRandom r = Hidden.rng(seed);
@@ -136,6 +141,7 @@ class BoxHiddenTest {
     }
 
     @Test
+    @DisplayName("a box behind the ray's origin is missed")
     void boxBehindTheOriginIsMissed() {
         long seed = 0xbe4b0L;
         SplittableRandom r = Hidden.rng(seed);
@@ -157,6 +163,7 @@ class BoxHiddenTest {
     }
 
     @Test
+    @DisplayName("tMin inside the box: the hit is the exit")
     void tMinInsideTheBoxGivesTheExit() {
         Box b = new Box(new Vec3(0, 0, 0), new Vec3(2, 2, 2), M, "box");
         Ray ray = new Ray(new Vec3(-4, 1, 1), new Vec3(2, 0, 0), 2.5, 100);
@@ -166,6 +173,7 @@ class BoxHiddenTest {
     }
 
     @Test
+    @DisplayName("tMax before the box: no hit")
     void tMaxBeforeTheBoxMisses() {
         Box b = new Box(new Vec3(0, 0, 0), new Vec3(2, 2, 2), M, "box");
         Ray ray = new Ray(new Vec3(-4, 1, 1), new Vec3(2, 0, 0), 0, 1.9);
@@ -175,6 +183,7 @@ class BoxHiddenTest {
     }
 
     @Test
+    @DisplayName("a hit farther than the record's t leaves the record as it was")
     void recordIsLeftUntouchedByAFartherHit() {
         long seed = 0xfa4b0L;
         SplittableRandom r = Hidden.rng(seed);
@@ -195,6 +204,7 @@ class BoxHiddenTest {
     }
 
     @Test
+    @DisplayName("a hit closer than the record's t replaces it")
     void closerHitReplacesARecordedFartherOne() {
         Box b = new Box(new Vec3(0, 0, 0), new Vec3(2, 2, 2), M, "box");
         Ray ray = new Ray(new Vec3(1, 1, 7), new Vec3(0, 0, -0.5));
@@ -204,6 +214,7 @@ class BoxHiddenTest {
     }
 
     @Test
+    @DisplayName("exact values: t = tMin and t = tMax count, t equal to the record's t does not replace it")
     void closedRangeAndStrictRecordComparisonAtExactValues() {
         Box b = new Box(new Vec3(-1, -1, -1), new Vec3(1, 1, 1), M, "box");
         Ray ray = new Ray(new Vec3(-5, 0.5, 0.25), new Vec3(1, 0, 0), 0, 4);
@@ -247,6 +258,7 @@ class BoxHiddenTest {
      * that edge may be either face's.
      */
     @Test
+    @DisplayName("rays in the plane of a face hit where they enter the face")
     void raysInAFacePlaneHitTheBoxWhereTheyEnterTheFace() {
         long seed = 0xf1a7L;
         SplittableRandom r = Hidden.rng(seed);
@@ -283,6 +295,7 @@ class BoxHiddenTest {
 
     /** A flat box (min = max along one axis, allowed by the scene format) is entered and left at one t. */
     @Test
+    @DisplayName("flat boxes (min = max along one axis) are hit from either side")
     void flatBoxesAreHitFromEitherSide() {
         long seed = 0xf1a7b0L;
         SplittableRandom r = Hidden.rng(seed);

@@ -13,6 +13,7 @@ import static raylab.hidden.Hidden.within;
 
 import java.util.SplittableRandom;
 
+import org.junit.jupiter.api.DisplayName;
 import org.junit.jupiter.api.Tag;
 import org.junit.jupiter.api.Test;
 
@@ -35,6 +36,7 @@ class SphereHiddenTest {
     }
 
     @Test
+    @DisplayName("random rays from outside hit the near point (the smaller root)")
     void randomRaysFromOutsideHitTheNearPoint() {
         long seed = 0x5ee1L;
         SplittableRandom r = Hidden.rng(seed);
@@ -53,6 +55,7 @@ class SphereHiddenTest {
     }
 
     @Test
+    @DisplayName("random rays from inside hit the far point (the larger root), normal outward")
     void randomRaysFromInsideHitTheFarPoint() {
         long seed = 0x1215de;
         SplittableRandom r = Hidden.rng(seed);
@@ -72,6 +75,7 @@ class SphereHiddenTest {
     }
 
     @Test
+    @DisplayName("a sphere behind the ray's origin is missed")
     void sphereBehindTheOriginIsMissed() {
         long seed = 0xbe41d;
         SplittableRandom r = Hidden.rng(seed);
@@ -90,6 +94,7 @@ class SphereHiddenTest {
     }
 
     @Test
+    @DisplayName("rays just outside the rim miss, rays just inside it hit")
     void nearMissesAndNearGrazingHits() {
         long seed = 0x67a2eL;
         SplittableRandom r = Hidden.rng(seed);
@@ -122,6 +127,7 @@ class SphereHiddenTest {
     }
 
     @Test
+    @DisplayName("tMin between the two roots: the hit is the exit point")
     void tMinBetweenTheRootsGivesTheExitPoint() {
         Sphere s = new Sphere(new Vec3(1, 2, -3), 2, M, "sphere");
         // Along +x through the centre: entry at x = -1 (t = 2), exit at x = 3 (t = 4); |d| = 0.5.
@@ -132,6 +138,7 @@ class SphereHiddenTest {
     }
 
     @Test
+    @DisplayName("tMax before the near root: no hit")
     void tMaxBeforeTheNearRootMisses() {
         Sphere s = new Sphere(new Vec3(1, 2, -3), 2, M, "sphere");
         Ray ray = new Ray(new Vec3(-2, 2, -3), new Vec3(0.5, 0, 0), 0.0, 1.9);
@@ -141,6 +148,7 @@ class SphereHiddenTest {
     }
 
     @Test
+    @DisplayName("tMax between the two roots: the hit is still the near point")
     void tMaxBetweenTheRootsStillGivesTheNearPoint() {
         Sphere s = new Sphere(new Vec3(0, 0, 0), 1, M, "sphere");
         Ray ray = new Ray(new Vec3(0, 0, 5), new Vec3(0, 0, -2), 0.0, 2.5);
@@ -150,6 +158,7 @@ class SphereHiddenTest {
     }
 
     @Test
+    @DisplayName("a hit farther than the record's t leaves the record as it was")
     void recordIsLeftUntouchedByAFartherHit() {
         long seed = 0xfa47e4L;
         SplittableRandom r = Hidden.rng(seed);
@@ -170,6 +179,7 @@ class SphereHiddenTest {
     }
 
     @Test
+    @DisplayName("a recorded hit between the two roots is kept")
     void recordWithAHitBetweenTheRootsKeepsIt() {
         Sphere s = new Sphere(new Vec3(0, 0, 0), 1, M, "sphere");
         Ray ray = new Ray(new Vec3(0, 0, 5), new Vec3(0, 0, -1));
@@ -181,6 +191,7 @@ class SphereHiddenTest {
     }
 
     @Test
+    @DisplayName("a hit closer than the record's t replaces it")
     void closerHitReplacesARecordedFartherOne() {
         Sphere s = new Sphere(new Vec3(0, 0, 0), 1, M, "sphere");
         Ray ray = new Ray(new Vec3(0, 0, 5), new Vec3(0, 0, -1));
@@ -190,6 +201,7 @@ class SphereHiddenTest {
     }
 
     @Test
+    @DisplayName("very short and very long directions d: t scales with 1/‖d‖")
     void veryShortAndVeryLongDirectionsScaleT() {
         Sphere s = new Sphere(new Vec3(3, -1, 2), 0.5, M, "sphere");
         for (double k : new double[] {1e-6, 1e-3, 1, 1e3, 1e6}) {
@@ -202,6 +214,7 @@ class SphereHiddenTest {
     }
 
     @Test
+    @DisplayName("spheres far away, very large and very small")
     void farAwayLargeAndSmallSpheres() {
         for (double size : new double[] {1e-3, 1, 1e3}) {
             Vec3 c = new Vec3(100 * size, 50 * size, -200 * size);
@@ -218,6 +231,7 @@ class SphereHiddenTest {
     }
 
     @Test
+    @DisplayName("exact values: t = tMin and t = tMax count, t equal to the record's t does not replace it")
     void closedRangeAndStrictRecordComparisonAtExactValues() {
         // Exactly representable: entry at t = 2 and exit at t = 4 for every correct method.
         Sphere s = new Sphere(new Vec3(0, 0, 0), 1, M, "sphere");
@@ -252,6 +266,7 @@ class SphereHiddenTest {
      * hits (the sphere is the closed set ‖x − c‖ = r; the two roots coincide).
      */
     @Test
+    @DisplayName("rays exactly touching the sphere hit at their one point")
     void exactlyTouchingRaysHitAtTheirOnePoint() {
         long seed = 0x7a9eL;
         SplittableRandom r = Hidden.rng(seed);

@@ -13,6 +13,7 @@ import static raylab.hidden.Hidden.within;
 
 import java.util.SplittableRandom;
 
+import org.junit.jupiter.api.DisplayName;
 import org.junit.jupiter.api.Tag;
 import org.junit.jupiter.api.Test;
 
@@ -55,6 +56,7 @@ class TriangleHiddenTest {
     }
 
     @Test
+    @DisplayName("random rays through the interior, from both sides")
     void randomRaysThroughTheInteriorFromBothSides() {
         long seed = 0x7e1aL;
         SplittableRandom r = Hidden.rng(seed);
@@ -76,6 +78,7 @@ class TriangleHiddenTest {
     }
 
     @Test
+    @DisplayName("rays just outside each edge miss")
     void pointsJustOutsideEachEdgeMiss() {
         long seed = 0xed9eL;
         SplittableRandom r = Hidden.rng(seed);
@@ -100,6 +103,7 @@ class TriangleHiddenTest {
     }
 
     @Test
+    @DisplayName("rays parallel to the plane (d·n = 0) miss")
     void raysParallelToThePlaneMiss() {
         long seed = 0x9a4aL;
         SplittableRandom r = Hidden.rng(seed);
@@ -120,6 +124,7 @@ class TriangleHiddenTest {
     }
 
     @Test
+    @DisplayName("a triangle behind the ray's origin is missed")
     void triangleBehindTheOriginIsMissed() {
         long seed = 0xbe47L;
         SplittableRandom r = Hidden.rng(seed);
@@ -136,6 +141,7 @@ class TriangleHiddenTest {
     }
 
     @Test
+    @DisplayName("a hit just inside [tMin, tMax] counts, just before tMin or past tMax it does not")
     void theEndsOfTheTRange() {
         Triangle tr = new Triangle(new Vec3(-1, -1, 0), new Vec3(3, -1, 0), new Vec3(-1, 3, 0), M, "triangle");
         Vec3 p = new Vec3(0, 0, 4);
@@ -155,6 +161,7 @@ class TriangleHiddenTest {
     }
 
     @Test
+    @DisplayName("a hit farther than the record's t leaves the record as it was")
     void recordIsLeftUntouchedByAFartherHit() {
         long seed = 0xfa47L;
         SplittableRandom r = Hidden.rng(seed);
@@ -173,6 +180,7 @@ class TriangleHiddenTest {
     }
 
     @Test
+    @DisplayName("a hit closer than the record's t replaces it")
     void closerHitReplacesARecordedFartherOne() {
         Triangle tr = new Triangle(new Vec3(0, 0, -5), new Vec3(0, 4, -5), new Vec3(4, 0, -5), M, "triangle");
         Ray ray = new Ray(new Vec3(1, 1, 0), new Vec3(0, 0, -1));
@@ -183,6 +191,7 @@ class TriangleHiddenTest {
     }
 
     @Test
+    @DisplayName("tiny and huge triangles")
     void tinyAndHugeTriangles() {
         for (double size : new double[] {1e-3, 1, 1e3}) {
             Triangle tr = new Triangle(new Vec3(0, 0, 0).times(size), new Vec3(2, 0, 1).times(size),
@@ -198,6 +207,7 @@ class TriangleHiddenTest {
     }
 
     @Test
+    @DisplayName("exact values: t = tMin and t = tMax count, t equal to the record's t does not replace it")
     void closedRangeAndStrictRecordComparisonAtExactValues() {
         Triangle tr = new Triangle(new Vec3(0, 0, 0), new Vec3(1, 0, 0), new Vec3(0, 1, 0), M, "triangle");
         Ray exact = new Ray(new Vec3(0.25, 0.25, 2), new Vec3(0, 0, -1), 2, 2);
@@ -223,6 +233,7 @@ class TriangleHiddenTest {
      * exactly 0 and every correct method agrees: the triangle is closed, such points are hits.
      */
     @Test
+    @DisplayName("rays exactly through an edge or a vertex hit")
     void pointsExactlyOnAnEdgeOrAVertexAreHits() {
         long seed = 0xed9eL;
         SplittableRandom r = Hidden.rng(seed);
@@ -256,6 +267,7 @@ class TriangleHiddenTest {
      * determinant of Möller–Trumbore and every edge test are exactly 0 for every correct method.
      */
     @Test
+    @DisplayName("rays in the triangle's plane miss, and degenerate triangles are never hit")
     void raysInThePlaneAndDegenerateTrianglesMiss() {
         long seed = 0xde9eL;
         SplittableRandom r = Hidden.rng(seed);

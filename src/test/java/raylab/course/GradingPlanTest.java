@@ -1,0 +1,70 @@
+package raylab.course;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertFalse;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import java.io.IOException;
+import java.nio.charset.StandardCharsets;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.util.ArrayList;
+import java.util.List;
+
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.io.TempDir;
+
+/**
+ * What the grading plan reads from the project's own test sources: every graded test method,
+ * visible or hidden, has a name for students, as the handouts and results.json show it.
+ */
+class GradingPlanTest {
+    private static final Path ROOT = Path.of(System.getProperty("raylab.grade.root", ".")).toAbsolutePath().normalize();
+
+    @Test
+    void everyGradedTestMethodHasADisplayName() throws IOException {
+        List<String> unnamed = new ArrayList<>();
+        int tests = 0;
+        int hidden = 0;
+        for (Assignment a : Assignments.load(ROOT).all()) {
+            GradingPlan.Plan plan = GradingPlan.of(ROOT, a);
+            List<GradingPlan.Item> items = new ArrayList<>(plan.visible());
+            items.addAll(plan.hidden());
+            for (GradingPlan.Item item : items) {
+                if (item.kind() != GradingPlan.Kind.TEST) {
+                    continue;
+                }
+                tests++;
+                hidden += plan.hidden().contains(item) ? 1 : 0;
+                String method = item.key().substring(item.key().indexOf('#') + 1);
+                // Without @DisplayName the plan falls back to the method's name.
+                if (item.name().equals(method) || item.name().isBlank()) {
+                    unnamed.add(a.id() + ": " + item.key());
+                }
+            }
+        }
+        // The full repository has the hidden tests: a count of 0 would mean they were not read.
+        assertTrue(hidden > 0, "no hidden test was read from " + ROOT + " (" + tests + " tests in all)");
+        assertEquals(List.of(), unnamed, "test methods without @DisplayName (" + unnamed.size() + " of " + tests + ")");
+    }
+
+    @Test
+    void aDisplayNameWithQuotesAndUnicodeIsReadAsWritten(@TempDir Path dir) throws IOException {
+        Path src = dir.resolve("ExampleTest.java");
+        Files.writeString(src, String.join("\n",
+                "class ExampleTest {",
+                "    @Test",
+                "    @DisplayName(\"n·h < 0: no \\\"highlight\\\", whatever p\")",
+                "    void named() {",
+                "    }",
+                "",
+                "    @Test",
+                "    void unnamed() {",
+                "    }",
+                "}"), StandardCharsets.UTF_8);
+        List<GradingPlan.TestMethod> found = GradingPlan.testMethods(src, "ExampleTest");
+        assertEquals(List.of(new GradingPlan.TestMethod("ExampleTest", "named", "n·h < 0: no \"highlight\", whatever p"),
+                new GradingPlan.TestMethod("ExampleTest", "unnamed", "unnamed")), found);
+        assertFalse(found.get(0).displayName().contains("\\"), "escapes are undone: " + found.get(0));
+    }
+}
