@@ -90,12 +90,12 @@ class GraderAttackTest {
                     .replace("@CACHE@", cache.toString()).replace("@OUT@", out.toString())
                     .replace("@PORT@", Integer.toString(server.getLocalPort())).replace("@TAG@", Long.toString(tag));
             Files.writeString(sub.resolve("Sphere.java"), attack);
+            // In a sandbox the attack's renders cannot finish (each intersect prints every ray seen so
+            // far): a short scene limit keeps the wait for their time-out short. The renders are not
+            // what these tests check.
             String[] base = {"grade", sub.toString(), "--out", out.toString(), "--root", root.toString(), "--quiet",
                 "--test-timeout", "5", "--milestone-timeout", "60", "--scene-timeout", "5", "--heap", "256",
                 "--milestone", "sphere", "--sandbox", mode, "--sandbox-user", user};
-            // The attack's renders never finish in a sandbox (it cannot intersect, and it records every
-            // ray): a short scene limit keeps the wait for their time-out short; the renders are not
-            // what these tests check.
             String[] args = base;
             ByteArrayOutputStream err = new ByteArrayOutputStream();
             int status = Main.run(new PrintWriter(new ByteArrayOutputStream(), true),

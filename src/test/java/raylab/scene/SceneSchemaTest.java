@@ -7,7 +7,6 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 import java.io.IOException;
 import java.nio.file.Path;
 import java.util.ArrayList;
-import java.util.Iterator;
 import java.util.List;
 import java.util.Map;
 import java.util.Set;
@@ -74,7 +73,7 @@ class SceneSchemaTest {
     @Test
     void everyClosedDefinitionIsAKindTheLoaderKnows() {
         Set<String> closed = new TreeSet<>();
-        schema.path("$defs").fields().forEachRemaining(e -> {
+        schema.path("$defs").properties().forEach(e -> {
             if (e.getValue().has("properties") && e.getValue().has("additionalProperties")) {
                 closed.add(e.getKey());
             }
@@ -120,15 +119,14 @@ class SceneSchemaTest {
         if (node.isObject()) {
             JsonNode props = node.get("properties");
             if (props != null && props.isObject()) {
-                props.fields().forEachRemaining(e -> {
+                props.properties().forEach(e -> {
                     if (!e.getValue().path("description").isTextual()
                             || e.getValue().path("description").asText().isBlank()) {
                         missing.add(where + "/properties/" + e.getKey());
                     }
                 });
             }
-            for (Iterator<Map.Entry<String, JsonNode>> it = node.fields(); it.hasNext();) {
-                Map.Entry<String, JsonNode> e = it.next();
+            for (Map.Entry<String, JsonNode> e : node.properties()) {
                 if (e.getKey().equals("if")) {
                     continue; // conditions name properties, they do not define them
                 }
