@@ -191,29 +191,26 @@ public class IntersectionBenchmark {
     @Benchmark
     @OperationsPerInvocation(N)
     public long shadowFixedEpsilon() {
-        long blocked = 0;
-        for (int i = 0; i < N; i++) {
-            blocked += ShadowOffsets.fixedEpsilon(shadowScene, shadowPoints[i], shadowNormals[i], light, rec) ? 1 : 0;
-        }
-        return blocked;
+        return blocked(ShadowOffsets::fixedEpsilon);
     }
 
     @Benchmark
     @OperationsPerInvocation(N)
     public long shadowSceneGlobal() {
-        long blocked = 0;
-        for (int i = 0; i < N; i++) {
-            blocked += ShadowOffsets.sceneGlobal(shadowScene, shadowPoints[i], shadowNormals[i], light, rec) ? 1 : 0;
-        }
-        return blocked;
+        return blocked(ShadowOffsets::sceneGlobal);
     }
 
     @Benchmark
     @OperationsPerInvocation(N)
     public long shadowLocalOffset() {
+        return blocked(ShadowOffsets::localOffset);
+    }
+
+    /** How many of the shadow points the offset method judges shadowed. */
+    private long blocked(ShadowOffsets.ShadowTest method) {
         long blocked = 0;
         for (int i = 0; i < N; i++) {
-            blocked += ShadowOffsets.localOffset(shadowScene, shadowPoints[i], shadowNormals[i], light, rec) ? 1 : 0;
+            blocked += method.isShadowed(shadowScene, shadowPoints[i], shadowNormals[i], light, rec) ? 1 : 0;
         }
         return blocked;
     }

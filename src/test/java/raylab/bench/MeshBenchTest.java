@@ -64,16 +64,24 @@ class MeshBenchTest {
         return new MeshBench(new Mesh(tris, MeshBench.GREY, "m"), 40, 30).run(1, true);
     }
 
+    /** What {@code raylab bench ARGS} prints, which must exit with status 0. */
+    private static String bench(String... args) {
+        StringWriter out = new StringWriter();
+        StringWriter err = new StringWriter();
+        String[] all = new String[args.length + 1];
+        all[0] = "bench";
+        System.arraycopy(args, 0, all, 1, args.length);
+        int status = Main.run(new PrintWriter(out, true), new PrintWriter(err, true), all);
+        assertEquals(0, status, out + "\n" + err);
+        return out.toString();
+    }
+
     @Test
     void benchObjPrintsTheCountsAsJson(@TempDir Path tmp) throws Exception {
         Path file = ico2(tmp);
         MeshBench.Pass expected = expectedPass(file);
-        StringWriter out = new StringWriter();
-        StringWriter err = new StringWriter();
-        int status = Main.run(new PrintWriter(out, true), new PrintWriter(err, true), "bench", "--obj", file.toString(), "--size", "40x30", "--runs", "1", "--warmup", "0",
-                "--threads", "2");
-        assertEquals(0, status, out + "\n" + err);
-        List<String> lines = out.toString().lines().toList();
+        String out = bench("--obj", file.toString(), "--size", "40x30", "--runs", "1", "--warmup", "0", "--threads", "2");
+        List<String> lines = out.lines().toList();
         String json = lines.get(lines.size() - 1);
         assertTrue(json.startsWith("{\"triangles\":320,\"threads\":2,"), json);
         assertTrue(json.contains("\"hits\":" + expected.hits() + ","), json + " vs " + expected);
@@ -84,12 +92,8 @@ class MeshBenchTest {
     void benchObjComparesThreadCountsTakenInTurns(@TempDir Path tmp) throws Exception {
         Path file = ico2(tmp);
         MeshBench.Pass expected = expectedPass(file);
-        StringWriter out = new StringWriter();
-        StringWriter err = new StringWriter();
-        int status = Main.run(new PrintWriter(out, true), new PrintWriter(err, true), "bench", "--obj", file.toString(), "--size",
-                "40x30", "--runs", "3", "--warmup", "0", "--threads", "1,2,3");
-        assertEquals(0, status, out + "\n" + err);
-        List<String> json = out.toString().lines().filter(l -> l.startsWith("{")).toList();
+        String out = bench("--obj", file.toString(), "--size", "40x30", "--runs", "3", "--warmup", "0", "--threads", "1,2,3");
+        List<String> json = out.lines().filter(l -> l.startsWith("{")).toList();
         assertEquals(3, json.size(), "one line per thread count: " + out);
         for (int i = 0; i < 3; i++) {
             String line = json.get(i);
