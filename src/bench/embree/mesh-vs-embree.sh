@@ -22,13 +22,13 @@ sed -e 's/auto a = std::chrono::steady_clock::now(); run(false);/double a = cpu_
 grep -q 'double a = cpu_now()' "$cpu_src" || { echo "could not switch the harness to CPU time" >&2; exit 1; }
 [ -x "$out/embree_bench_cpu" ] && [ "$out/embree_bench_cpu" -nt "$cpu_src.body" ] || g++ -O3 -march=native -std=c++17 "$cpu_src" -lembree3 -lpthread -o "$out/embree_bench_cpu"
 [ -f "$root/target/raylab.jar" ] || (cd "$root" && ./mvnw -o -q -DskipTests package)
-echo "{\"machine\":\"$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)\",\"java\":\"$(java -version 2>&1 | head -1)\",\"date\":\"$(date -u +%FT%TZ)\",\"load\":\"$(cut -d' ' -f1-3 /proc/loadavg)\"}"
+echo "{\"machine\":\"$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)\",\"java\":\"$(java -version 2>&1 | head -1 | tr -d '"')\",\"date\":\"$(date -u +%FT%TZ)\",\"load\":\"$(cut -d' ' -f1-3 /proc/loadavg)\"}"
 for r in $(seq 1 "${2:-3}"); do
   for L in ${1:-6}; do
     [ -f "$out/ico$L.obj" ] || python3 "$harness/meshgen.py" "$L" "$out/ico$L.obj"
-    echo "{\"round\":$r,\"level\":$L,\"engine\":\"embree\",\"load\":\"$(cut -d' ' -f1 /proc/loadavg)\",\"result\":$("$out/embree_bench_cpu" "$out/ico$L.obj" 1024 768 1 5)}"
+    echo "{\"round\":$r,\"level\":$L,\"engine\":\"embree\",\"load\":\"$(cut -d' ' -f1 /proc/loadavg)\",\"result\":$("$out/embree_bench_cpu" "$out/ico$L.obj" 1024 768 1 3)}"
     for mode in float double; do
-      res=$(java -Draylab.mesh.traversal=$mode -jar "$root/target/raylab.jar" bench --obj "$out/ico$L.obj" --threads 1 --warmup 2 --runs 5 | tail -1)
+      res=$(java -Draylab.mesh.traversal=$mode -jar "$root/target/raylab.jar" bench --obj "$out/ico$L.obj" --threads 1 --warmup 2 --runs 3 | tail -1)
       echo "{\"round\":$r,\"level\":$L,\"engine\":\"raylab-$mode\",\"load\":\"$(cut -d' ' -f1 /proc/loadavg)\",\"result\":$res}"
     done
   done

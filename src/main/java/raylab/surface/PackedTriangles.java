@@ -193,7 +193,10 @@ final class PackedTriangles implements Mesh.Engine {
                 int end = leaf[l] + leaf[l + 1];
                 for (int s = leaf[l]; s < end; s++) {
                     tests++;
-                    double t = hitT(tri, 9 * s, kx, ky, kz, shx, shy, shz, pkx, pky, pkz, px, py, pz);
+                    double t = hitT(tri, 9 * s, kx, ky, kz, shx, shy, shz, pkx, pky, pkz);
+                    if (t == t) { // a hit (not NaN): the plane rule
+                        t = planeRule(t, tri, 9 * s, px, py, pz);
+                    }
                     // NaN (no hit) fails every comparison.
                     if (t >= tMin && t <= tMax && t < best) {
                         best = t;
@@ -333,7 +336,10 @@ final class PackedTriangles implements Mesh.Engine {
                 int end = leaf[l] + leaf[l + 1];
                 for (int s = leaf[l]; s < end; s++) {
                     tests++;
-                    double t = hitT(tri, 9 * s, kx, ky, kz, sx, sy, sz, pkx, pky, pkz, px, py, pz);
+                    double t = hitT(tri, 9 * s, kx, ky, kz, sx, sy, sz, pkx, pky, pkz);
+                    if (t == t) { // a hit (not NaN): the plane rule
+                        t = planeRule(t, tri, 9 * s, px, py, pz);
+                    }
                     // NaN (no hit) fails every comparison.
                     if (t >= tMin && t <= tMax && t < best) {
                         best = t;
@@ -395,7 +401,7 @@ final class PackedTriangles implements Mesh.Engine {
      * in its plane. Range checks are the caller's.
      */
     static double hitT(double[] tri, int o, int kx, int ky, int kz, double sx, double sy, double sz,
-            double pkx, double pky, double pkz, double px, double py, double pz) {
+            double pkx, double pky, double pkz) {
         double az = tri[o + kz] - pkz;
         double ax = tri[o + kx] - pkx + sx * az;
         double ay = tri[o + ky] - pky + sy * az;
@@ -420,14 +426,19 @@ final class PackedTriangles implements Mesh.Engine {
             return Double.NaN;
         }
         double t = e0 / det * (sz * az) + e1 / det * (sz * bz) + e2 / det * (sz * cz);
-        if (inPlane(tri, o, px, py, pz)) {
-            // As Triangle.intersect: the ray meets the plane at p, a hit at t = 0 if p is in the box.
-            if (!inBox(tri, o, px, py, pz)) {
-                return Double.NaN;
-            }
-            t = 0;
-        }
         return t;
+    }
+
+    /**
+     * Triangle.intersect's rule for a ray whose origin lies in the triangle's plane (up to
+     * rounding): t = 0 if p is in the triangle's box, else no hit (NaN). Kept out of hitT so that
+     * hitT stays small enough to be inlined.
+     */
+    private static double planeRule(double t, double[] tri, int o, double px, double py, double pz) {
+        if (!inPlane(tri, o, px, py, pz)) {
+            return t;
+        }
+        return inBox(tri, o, px, py, pz) ? 0 : Double.NaN;
     }
 
     /** Triangle.inPlane on the triangle at tri[o ..), with its operations in its order. */
