@@ -124,6 +124,8 @@ public final class Grader {
         });
         GraderSetup setup = GraderSetup.prepare(root, selected, options.cacheDir().toAbsolutePath(), log);
         notes.addAll(setup.notes);
+        // Mode none: children could write the cache; it is checked against this manifest at the end.
+        CacheManifest.Guard cacheGuard = sandbox.mode() == Sandbox.Mode.NONE ? CacheManifest.guard(setup.dir) : null;
         this.allAssignments = all.all();
         this.hiddenTexts = hiddenTexts(setup, all.all());
         // Every reference image is read before any student code runs.
@@ -179,6 +181,9 @@ public final class Grader {
         } finally {
             pool.shutdownNow();
             GraderSetup.deleteTree(work);
+            if (cacheGuard != null) {
+                cacheGuard.check().ifPresent(notes::add);
+            }
         }
         return new GradeReport(List.copyOf(results.values()), accepted, ignored, notes,
                 (System.nanoTime() - t0) / 1e9);
