@@ -124,6 +124,8 @@ public final class Grader {
         });
         GraderSetup setup = GraderSetup.prepare(root, selected, options.cacheDir().toAbsolutePath(), log);
         notes.addAll(setup.notes);
+        // Mode none: children could write the cache; it is checked against this manifest at the end.
+        CacheManifest.Guard cacheGuard = sandbox.mode() == Sandbox.Mode.NONE ? CacheManifest.guard(setup.dir) : null;
         this.allAssignments = all.all();
         this.hiddenTexts = hiddenTexts(setup, all.all());
         // Every reference image is read before any student code runs.
@@ -179,6 +181,9 @@ public final class Grader {
         } finally {
             pool.shutdownNow();
             GraderSetup.deleteTree(work);
+            if (cacheGuard != null) {
+                cacheGuard.check().ifPresent(notes::add);
+            }
         }
         return new GradeReport(List.copyOf(results.values()), accepted, ignored, notes,
                 (System.nanoTime() - t0) / 1e9);
@@ -678,7 +683,9 @@ public final class Grader {
         });
         Path scenes = box.run().resolve("scenes");
         copyScenes(scenesCopy, scenes);
-        List<String> cmd = new ArrayList<>(box.wrapper());
+        Duration limit = options.sceneLimit().multipliedBy(a.scenes().size());
+        // The sandbox stops the renders at the limit itself and still hands back the images made.
+        List<String> cmd = new ArrayList<>(box.wrapper(limit));
         cmd.addAll(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
                 "-Xmx" + options.sceneHeapMb() + "m", "-XX:+ExitOnOutOfMemoryError", "-Djava.awt.headless=true", "-XX:+DisableAttachMechanism",
                 "-XX:-UsePerfData", "--limit-modules", TestLauncher.CHILD_MODULES, "-cp",
@@ -693,7 +700,6 @@ public final class Grader {
             pngs.add(png);
         }
         long t0 = System.nanoTime();
-        Duration limit = options.sceneLimit().multipliedBy(a.scenes().size());
         boolean timedOut = false;
         List<byte[]> images = new ArrayList<>();
         List<String> errors = new ArrayList<>();
@@ -704,7 +710,8 @@ public final class Grader {
             p = pb.start();
             p.getOutputStream().close();
             try {
-                if (!p.waitFor(limit.toMillis(), java.util.concurrent.TimeUnit.MILLISECONDS)) {
+                if (!p.waitFor(limit.toMillis() + 5_000, java.util.concurrent.TimeUnit.MILLISECONDS)
+                        || p.exitValue() == Sandbox.DEADLINE_STATUS) {
                     timedOut = true;
                 }
             } catch (InterruptedException e) {
