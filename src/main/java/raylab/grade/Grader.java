@@ -320,7 +320,7 @@ public final class Grader {
             return t;
         }
         return new GradeReport.Test(t.milestone(), t.name(), t.kind(), t.maxScore(), t.score(), t.passed(), m, o,
-                t.visibility(), t.millis(), t.file(), t.images());
+                t.visibility(), t.millis(), t.file(), t.images(), withheld(t.note()));
     }
 
     private String withheld(String text) {
@@ -599,6 +599,7 @@ public final class Grader {
             String message = "";
             String output = "";
             long ms = 0;
+            String note = "";
             int failedCount = 0;
             for (TestResult e : g) {
                 TestResult r = got.get(e.id());
@@ -606,6 +607,7 @@ public final class Grader {
                     r = e.with(TestResult.Status.MISSING, "no result was reported for this test");
                 }
                 ms += r.millis();
+                note = raylab.course.Notes.add(note, r.output());
                 if (!r.status().passed()) {
                     failedCount++;
                     if (passed) {
@@ -623,8 +625,9 @@ public final class Grader {
             }
             String file = kind == Kind.CASE ? (cases.get(first.method()) == null ? "" : cases.get(first.method()).file())
                     : testFile(a, first.className());
-            out.add(new GradeReport.Test(a.id(), name, kind, points, passed ? points : 0, passed, message, output,
-                    visibility, ms, file, null));
+            out.add(new GradeReport.Test(a.id(), name, kind, points, passed ? points : 0, passed,
+                    raylab.course.Messages.plain(message), raylab.course.Notes.strip(output), visibility, ms, file, null)
+                    .withNote(note));
         }
         return out;
     }
