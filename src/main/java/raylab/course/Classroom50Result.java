@@ -88,8 +88,6 @@ public final class Classroom50Result {
         root.put("score", score);
         root.put("max-score", max);
         root.put("tests", tests);
-        root.put("raylab", "visible tests, data cases and scenes only, in hundredths of a point; the hidden tests"
-                + " are graded by the course staff");
         return root;
     }
 
