@@ -67,6 +67,10 @@ public final class GradeCommand implements Callable<Integer> {
     @Option(names = "--quiet", description = "Print only the total score.")
     boolean quiet;
 
+    @Option(names = "--seed", paramLabel = "N", description = {"Seed of the graded scenes' variants (default: drawn fresh;",
+        "the report names it, so that a regrade with --seed N grades the same variants)."})
+    Long seed;
+
     @Override
     public Integer call() throws IOException {
         if (!Files.isDirectory(submission) && !Files.isRegularFile(submission)) {
@@ -85,7 +89,7 @@ public final class GradeCommand implements Callable<Integer> {
                 .withSandboxUser(sandboxUser);
         o = new Grader.Options(o.root(), o.milestones(), o.limits(), o.sceneLimit(), heap, cache == null
                 ? o.cacheDir() : cache.toAbsolutePath(), o.sandboxUser(), o.parallel()).withSandboxMode(mode(sandbox));
-        return run(o, submission, out, s -> {
+        return run(o, seed == null ? GradedScenes.freshSeed() : seed, submission, out, s -> {
             if (!quiet) {
                 System.err.println(s);
             }
@@ -111,6 +115,12 @@ public final class GradeCommand implements Callable<Integer> {
      */
     static int run(Grader.Options o, Path submission, Path out, java.util.function.Consumer<String> log, boolean quiet,
             PrintStream stdout) {
+        return run(o, GradedScenes.freshSeed(), submission, out, log, quiet, stdout);
+    }
+
+    /** As above, with the seed of the graded scenes' variants. */
+    static int run(Grader.Options o, long seed, Path submission, Path out, java.util.function.Consumer<String> log,
+            boolean quiet, PrintStream stdout) {
         long t0 = System.nanoTime();
         GradeReport report = null;
         int status = 0;
@@ -123,7 +133,7 @@ public final class GradeCommand implements Callable<Integer> {
                 System.err.println("raylab: " + oneLine(submission + ": no such file or directory"));
                 status = 2;
             } else {
-                report = new Grader(o, log).grade(submission);
+                report = new Grader(o, log).seed(seed).grade(submission);
             }
         } catch (Throwable e) {
             report = null;
