@@ -50,8 +50,12 @@ public final class SceneVariants {
         double pitch = r.within(spec.pitch());
         double dist = r.within(spec.distance());
         double fov = r.within(spec.fov());
-        long panX = Math.round(r.within(spec.pan()));
-        long panY = Math.round(r.within(spec.pan()));
+        // A pan of whole pixels other than none: one of the (2·pan + 1)² − 1 shifts, uniformly.
+        int side = 2 * spec.pan() + 1;
+        int cell = (int) (r.next() * (side * side - 1));
+        cell = cell >= (side * side - 1) / 2 ? cell + 1 : cell; // skip the centre, (0, 0)
+        long panX = cell % side - spec.pan();
+        long panY = cell / side - spec.pan();
         if ("perspective".equals(cam.path("type").asText())) {
             orbit(cam, yaw, pitch, dist, fov);
         } else if (spec.pan() > 0) {
