@@ -285,7 +285,7 @@ class MeshEngineTest {
             for (boolean any : new boolean[] {false, true}) {
                 a.reset();
                 b.reset();
-                boolean ha = engine.intersect(a, ray, any);
+                boolean ha = engine.intersectFloatWherePossible(a, ray, any);
                 boolean hb = engine.intersectDouble(b, ray, any);
                 String ctx = "seed " + seed + " " + ray + (any ? " any hit" : " closest");
                 assertEquals(hb, ha, ctx + ": hit? double " + b + ", float " + a);
