@@ -68,9 +68,12 @@ public final class StudentProcess implements AutoCloseable {
     private final Wire.Out buf = new Wire.Out();
     private RuntimeException pendingFailure;
     // The watchdog's view of the current outermost call.
-    private volatile long callStartCpu = -1;
+    /** The number of the outermost call running (−1: none), for the watchdog. */
+    private volatile long callSeq = -1;
+    private long callCount;
     private volatile long callStartWall;
     private volatile boolean timedOut;
+    private volatile boolean starting;
     private final Thread watchdog;
     private volatile boolean closed;
     private long calls;
@@ -98,20 +101,30 @@ public final class StudentProcess implements AutoCloseable {
     }
 
     private void watch() {
+        long seen = -1;
+        long baseline = 0;
         while (!closed) {
             try {
-                Thread.sleep(20);
+                Thread.sleep(25);
             } catch (InterruptedException e) {
                 return;
             }
-            long start = callStartCpu;
+            long call = callSeq;
             Process p = proc;
-            if (start < 0 || p == null) {
+            if (call < 0 || p == null) {
                 continue;
             }
-            long used = cpuNanos(p) - start;
+            // The CPU time at the first look at a call is its baseline (at most one tick late):
+            // reading /proc at every call would cost more than the call.
+            long cpu = cpuNanos(p);
+            if (call != seen) {
+                seen = call;
+                baseline = starting ? 0 : cpu;
+                continue;
+            }
+            long used = cpu - baseline;
             long wall = System.nanoTime() - callStartWall;
-            long budget = config.callBudgetMillis() * 1_000_000L;
+            long budget = Math.max(starting ? 30_000 : 0, config.callBudgetMillis()) * 1_000_000L;
             // Wall time too, more generously: a student process that sleeps uses no CPU.
             if (used > budget || wall > 3 * budget + 5_000_000_000L) {
                 timedOut = true;
@@ -123,6 +136,12 @@ public final class StudentProcess implements AutoCloseable {
     private static void kill(Process p) {
         p.descendants().forEach(ProcessHandle::destroyForcibly);
         p.destroyForcibly();
+    }
+
+    /** CPU time of the current student process (0 if none runs), for measurements. */
+    public static long cpuNanosOf(StudentProcess s) {
+        Process p = s.proc;
+        return p == null ? 0 : cpuNanos(p);
     }
 
     /** CPU time (user + system) of the process and its descendants, from /proc; 0 where unknown. */
@@ -141,6 +160,17 @@ public final class StudentProcess implements AutoCloseable {
             return Long.parseLong(f[11]) + Long.parseLong(f[12]);
         } catch (IOException | RuntimeException e) {
             return 0;
+        }
+    }
+
+    /** Starts the student process if none is running (a failure shows at the next call). */
+    public synchronized void ensureStarted() {
+        if (proc == null) {
+            try {
+                start();
+            } catch (IOException | RuntimeException e) {
+                dead();
+            }
         }
     }
 
@@ -164,8 +194,9 @@ public final class StudentProcess implements AutoCloseable {
         out = new BufferedOutputStream(proc.getOutputStream(), 1 << 16);
         // The HELLO line: anything else means the JVM did not start as a student server.
         ByteArrayOutputStream line = new ByteArrayOutputStream();
-        callStartCpu = 0;
+        starting = true;
         callStartWall = System.nanoTime();
+        callSeq = ++callCount;
         timedOut = false;
         try {
             for (int b; (b = in.read()) != '\n';) {
@@ -178,7 +209,8 @@ public final class StudentProcess implements AutoCloseable {
                 line.write(b);
             }
         } finally {
-            callStartCpu = -1;
+            callSeq = -1;
+            starting = false;
         }
         if (!line.toString(StandardCharsets.US_ASCII).equals(Wire.HELLO)) {
             dead();
@@ -302,7 +334,7 @@ public final class StudentProcess implements AutoCloseable {
             if (outer) {
                 timedOut = false;
                 callStartWall = System.nanoTime();
-                callStartCpu = cpuNanos(proc);
+                callSeq = ++callCount;
             }
             depth++;
             try {
@@ -313,7 +345,20 @@ public final class StudentProcess implements AutoCloseable {
         } catch (IOException e) {
             boolean slow = timedOut;
             String why = firstLine(stderr);
+            Process p = proc;
+            boolean outOfMemory = false;
+            if (p != null && !slow) {
+                try {
+                    outOfMemory = p.waitFor(2, java.util.concurrent.TimeUnit.SECONDS) && p.exitValue() == 3;
+                } catch (InterruptedException ie) {
+                    Thread.currentThread().interrupt();
+                }
+            }
             dead();
+            if (outOfMemory) {
+                throw new StudentException("java.lang.OutOfMemoryError", "your code ran out of memory (look for"
+                        + " something that grows with every call, such as a list kept in a static field)", List.of(), "");
+            }
             if (slow) {
                 throw new StudentTimeout("your code took longer than " + config.callBudgetMillis() / 1000.0
                         + " s of CPU time for one call and was stopped (an endless loop?)");
@@ -326,7 +371,7 @@ public final class StudentProcess implements AutoCloseable {
                     + (why.isEmpty() ? " (System.exit, running out of memory or a crash)" : ": " + why), List.of(), "");
         } finally {
             if (outer) {
-                callStartCpu = -1;
+                callSeq = -1;
                 ephemeral.clear();
                 ephemeralOf.clear();
                 pendingFailure = null;
