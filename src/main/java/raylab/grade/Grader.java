@@ -90,7 +90,9 @@ public final class Grader {
      * renders run in a trusted JVM whose stand-ins call the student process. Off by default until
      * renders are batched (a full submission is too slow with one call per intersection).
      */
-    static final boolean PROCESS_BOUNDARY = Boolean.getBoolean("raylab.grade.boundary");
+    static boolean processBoundary() {
+        return Boolean.getBoolean("raylab.grade.boundary");
+    }
 
     private final Options options;
     private final Consumer<String> log;
@@ -306,7 +308,8 @@ public final class Grader {
         List<Path> trusted = new ArrayList<>();
         trusted.add(setup.standIns.get(a.id()));
         trusted.addAll(below);
-        if (PROCESS_BOUNDARY) {
+        boolean boundary = processBoundary();
+        if (boundary) {
             runTests(a, false, visibleClasses, expected, trusted, overlay, setup, mdir, sandbox, got, notes);
             runTests(a, true, hiddenClasses, expected, trusted, overlay, setup, mdir, sandbox, got, notes);
         } else {
@@ -315,7 +318,7 @@ public final class Grader {
         }
         tests.addAll(scoreTests(a, setup, plan(a), expected, got));
         // Scenes.
-        tests.addAll(PROCESS_BOUNDARY ? gradeScenes(a, trusted, overlay, setup, mdir, scenesCopy, sandbox)
+        tests.addAll(boundary ? gradeScenes(a, trusted, overlay, setup, mdir, scenesCopy, sandbox)
                 : gradeScenesInBox(a, layers, setup, mdir, scenesCopy, sandbox));
         return new GradeReport.Milestone(a.id(), a.title(), notes.stream().map(this::withheld).toList(),
                 tests.stream().map(this::withheld).toList());
