@@ -532,18 +532,32 @@ public final class StudentProcess implements AutoCloseable {
         return id;
     }
 
+    private final Map<Class<?>, Class<?>> servedAncestors = new HashMap<>();
+
+    private Class<?> servedAncestor(Class<?> c) {
+        Class<?> r = servedAncestors.computeIfAbsent(c, k -> {
+            for (Class<?> x = k; x != null; x = x.getSuperclass()) {
+                if (config.served().contains(x.getName())) {
+                    return x;
+                }
+            }
+            return Void.class;
+        });
+        return r == Void.class ? null : r;
+    }
+
     /** The handle of a served (stand-in) object, defined in the student process on first use. */
-    private int handle(Object o) {
+    private int handle(Object o, Class<?> as) {
         Integer h = handleOf.get(o);
         if (h != null) {
             return h;
         }
         int id = nextHandle++;
         try {
-            Object[] data = constructorData(o);
+            Object[] data = constructorData(o, as);
             Wire.Out d = new Wire.Out();
             d.writeInt(id);
-            d.writeString(o.getClass().getName());
+            d.writeString(as.getName());
             d.writeInt(data.length);
             for (Object x : data) {
                 Wire.writeValue(d, x, null);
@@ -576,8 +590,8 @@ public final class StudentProcess implements AutoCloseable {
      * known through {@code -parameters}) the public field or accessor of that name, if it is a
      * plain value; null otherwise (a material, a surface: the student process gets none).
      */
-    static Object[] constructorData(Object o) {
-        Constructor<?> k = CONSTRUCTORS.computeIfAbsent(o.getClass(), c -> {
+    static Object[] constructorData(Object o, Class<?> as) {
+        Constructor<?> k = CONSTRUCTORS.computeIfAbsent(as, c -> {
             Constructor<?> best = null;
             for (Constructor<?> x : c.getConstructors()) {
                 if (best == null || x.getParameterCount() > best.getParameterCount()) {
@@ -587,7 +601,7 @@ public final class StudentProcess implements AutoCloseable {
             return best;
         });
         if (k == null) {
-            throw new IllegalArgumentException(o.getClass().getName() + " has no public constructor");
+            throw new IllegalArgumentException(as.getName() + " has no public constructor");
         }
         Parameter[] ps = k.getParameters();
         Object[] data = new Object[ps.length];
@@ -601,7 +615,7 @@ public final class StudentProcess implements AutoCloseable {
                 // Without -parameters: the public instance fields in declaration order stand for
                 // the value parameters, name() for the String one.
                 if (fields == null) {
-                    fields = publicFields(o.getClass());
+                    fields = publicFields(as);
                 }
                 Class<?> t = ps[i].getType();
                 if (t == String.class) {
@@ -697,15 +711,19 @@ public final class StudentProcess implements AutoCloseable {
     private final class Refs implements Wire.Refs {
         @Override
         public boolean encode(Wire.Out o, Object x) {
-            if (config.served().contains(x.getClass().getName())) {
-                int h;
-                try {
-                    h = handle(x);
-                } catch (DefineFailed e) {
-                    throw e;
-                }
+            Class<?> served = servedAncestor(x.getClass());
+            if (served != null) {
+                // A subclass of a served class (the reference BlinnPhong over the stand-in
+                // Lambertian) is the served class there, made from the same data.
                 o.writeByte(Wire.HANDLE);
-                o.writeInt(h);
+                o.writeInt(handle(x, served));
+                return true;
+            }
+            if (x instanceof PointLight l) {
+                // By value, with a number: the same light comes back as the grader's own object.
+                o.writeByte(Wire.LIGHT_REF);
+                o.writeInt(ephemeral(l));
+                Wire.writeValue(o, new PointLight(l.position, l.intensity, l.castsShadows, l.name), null);
                 return true;
             }
             if (x instanceof Surface s) {
@@ -753,6 +771,7 @@ public final class StudentProcess implements AutoCloseable {
                 }
                 case Wire.REMOTE_SURFACE:
                 case Wire.REMOTE_MATERIAL:
+                case Wire.LIGHT_REF:
                     if (id < 1 || id > ephemeral.size()) {
                         throw new Wire.ProtocolException("unknown object " + id);
                     }

@@ -414,12 +414,13 @@ public final class Grader {
 
     /**
      * The student process's box: the student's classes of M, the public stubs of the other
-     * student files and the framework; nothing else (no reference, no test, no grader class).
+     * student files and the public framework (as the starter has it); nothing else (no
+     * reference, no test, no grader class).
      */
     private Sandbox.Box studentBox(Assignment a, Path overlay, GraderSetup setup, Path mdir, Sandbox sandbox)
             throws IOException {
         List<String> mine = a.files().stream().map(f -> GraderSetup.classPrefix(f.path())).toList();
-        return sandbox.box(mdir, List.of(overlay, setup.publicStubs, setup.framework), (entry, rel) ->
+        return sandbox.box(mdir, List.of(overlay, setup.publicStubs, setup.publicFramework), (entry, rel) ->
                 !entry.equals(setup.publicStubs) || mine.stream().noneMatch(x -> GraderSetup.isClassOf(rel, x)));
     }
 

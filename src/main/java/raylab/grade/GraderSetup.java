@@ -32,6 +32,7 @@ import javax.tools.StandardJavaFileManager;
 import javax.tools.ToolProvider;
 
 import com.fasterxml.jackson.core.type.TypeReference;
+import com.fasterxml.jackson.databind.JsonNode;
 import com.fasterxml.jackson.databind.ObjectMapper;
 
 import raylab.course.Assignment;
@@ -62,6 +63,11 @@ final class GraderSetup {
      * {@link #framework} the public framework the student process gets.
      */
     final Path publicStubs;
+    /**
+     * The framework as the starter ships it: {@link #framework}'s classes without those the
+     * release leaves out of the starter ({@code assignments/release.json} "exclude").
+     */
+    final Path publicFramework;
     /** Per milestone: its stand-in classes for the grader's process ({@link raylab.boundary.StandIns}). */
     final Map<String, Path> standIns = new LinkedHashMap<>();
     /** Per milestone: the test classes (outer names) that belong to it. */
@@ -77,6 +83,7 @@ final class GraderSetup {
         this.framework = dir.resolve("framework.jar");
         this.tests = dir.resolve("tests");
         this.publicStubs = dir.resolve("public");
+        this.publicFramework = dir.resolve("public-framework");
         this.libraries = libraries;
     }
 
@@ -321,6 +328,34 @@ final class GraderSetup {
         below.add(t.framework);
         below.addAll(libs);
         raylab.boundary.StandIns.compile(stubs, below, t.publicStubs);
+        // The public framework: what the release puts in the starter, no more.
+        List<String> left = new ArrayList<>(List.of("raylab/boundary/"));
+        Path release = root.resolve("assignments/release.json");
+        if (Files.isRegularFile(release)) {
+            for (JsonNode e : JSON.readTree(release.toFile()).path("exclude")) {
+                String x = e.asText();
+                if (x.startsWith("src/main/java/") && x.endsWith("/**")) {
+                    left.add(x.substring("src/main/java/".length(), x.length() - 2));
+                } else if (x.startsWith("src/main/java/") && x.endsWith(".java")) {
+                    left.add(x.substring("src/main/java/".length(), x.length() - 5));
+                }
+            }
+        }
+        Files.createDirectories(t.publicFramework);
+        try (JarFile jar = new JarFile(t.framework.toFile())) {
+            for (var en : (Iterable<java.util.jar.JarEntry>) jar.stream()::iterator) {
+                String n = en.getName();
+                if (en.isDirectory() || n.startsWith("META-INF/") && !n.startsWith("META-INF/services/")
+                        || left.stream().anyMatch(x -> x.endsWith("/") ? n.startsWith(x) : isClassOf(n, x))) {
+                    continue;
+                }
+                Path q = t.publicFramework.resolve(n);
+                Files.createDirectories(q.getParent());
+                try (var in = jar.getInputStream(en)) {
+                    Files.copy(in, q);
+                }
+            }
+        }
         List<Path> withStubs = new ArrayList<>(below);
         withStubs.add(0, t.publicStubs);
         for (Assignment a : milestones) {
