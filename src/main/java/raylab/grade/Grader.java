@@ -817,6 +817,12 @@ public final class Grader {
         for (int i = 0; i < a.scenes().size(); i++) {
             Assignment.GradedScene sc = a.scenes().get(i);
             Path scene = scenesCopy.resolve(root.resolve("scenes").relativize(root.resolve(sc.scene())).toString());
+            if (graded.containsKey(sc.scene()) && graded.get(sc.scene()).varied()) {
+                // The variant in place of the published scene, next to it (relative paths of meshes).
+                Path v = scene.resolveSibling("variant-" + a.id() + "-" + i + "-" + scene.getFileName());
+                Files.writeString(v, graded.get(sc.scene()).json());
+                scene = v;
+            }
             Path png = dir.resolve("scene" + i + ".png");
             cmd.add(scene.toString());
             cmd.add(png.toString());
@@ -871,7 +877,8 @@ public final class Grader {
         for (int i = 0; i < a.scenes().size(); i++) {
             Assignment.GradedScene sc = a.scenes().get(i);
             String name = sc.scene();
-            byte[] refBytes = references.get(sc.reference());
+            GradedScenes.Graded g = graded.get(sc.scene());
+            byte[] refBytes = g != null && g.varied() ? g.reference() : references.get(sc.reference());
             byte[] mine = images.get(i);
             String errLine = errors.get(i) == null ? "" : errors.get(i);
             String msg;
