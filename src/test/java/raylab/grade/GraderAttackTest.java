@@ -374,8 +374,8 @@ class GraderAttackTest {
         assumeTrue(namespaces(), "unshare cannot create namespaces here");
         Graded a = graded(SUBMISSION_A, true, "namespace", GraderTest.sandboxUser());
         Graded b = graded(SUBMISSION_B, true, "namespace", GraderTest.sandboxUser());
-        // Today the PNG hook (box) and the marker (triangle) still work: see the boundary test below.
-        assertNoForgedPointAndNoneLost(a, disarmed(SUBMISSION_A), Set.of("triangle"));
+        // Today the PNG hook (box) still works (renders in the child): see the boundary test below.
+        assertNoForgedPointAndNoneLost(a, disarmed(SUBMISSION_A), Set.of());
         assertNoForgedPointAndNoneLost(b, disarmed(SUBMISSION_B), Set.of("box"));
         assertNoCovertChannel(a);
         java.util.regex.Matcher disk = java.util.regex.Pattern.compile("disk: wrote (\\d+) MB").matcher(a.text());
@@ -394,7 +394,7 @@ class GraderAttackTest {
                 "needs root and the user " + GraderTest.sandboxUser() + " (.ci/run creates it)");
         Graded a = graded(SUBMISSION_A, true, "user", GraderTest.sandboxUser());
         Graded b = graded(SUBMISSION_B, true, "user", GraderTest.sandboxUser());
-        assertNoForgedPointAndNoneLost(a, disarmed(SUBMISSION_A), Set.of("triangle"));
+        assertNoForgedPointAndNoneLost(a, disarmed(SUBMISSION_A), Set.of());
         assertNoForgedPointAndNoneLost(b, disarmed(SUBMISSION_B), Set.of("box"));
         // Each child its own uid, its files in /tmp removed when it ends: the channel is empty.
         assertNoCovertChannel(a);
@@ -424,8 +424,7 @@ class GraderAttackTest {
 
     /**
      * What waits for the boundary (issue 17: student code alone in its process, renders in the
-     * trusted one) and the mesh change (no reference kernel, no marker): the PNG hook and the
-     * marker forge nothing, and no reference class, hidden test, reference image or grader frame
+     * trusted one): the PNG hook forges nothing, and no reference class, hidden test, reference image or grader frame
      * is within the student code's reach. Run with {@code -Draylab.attacks.afterBoundary=true};
      * enable it for good at the merge.
      */
