@@ -273,7 +273,9 @@ class GraderAttackTest {
         String tag = Integer.toString(41_000 + new SplittableRandom(System.nanoTime()).nextInt(9_000));
         Path work = Files.createTempDirectory("raylab-attacks");
         try {
-            Path cache = root.resolve("target/grader-cache");
+            // Mode none poisons its cache (and must throw it away): a cache of its own, so that no
+            // other test grading at the same time loses the shared one.
+            Path cache = root.resolve(mode.equals("none") ? "target/grader-cache-none" : "target/grader-cache");
             Path out = Files.createDirectories(work.resolve("out"));
             Path sub = Files.createDirectories(work.resolve("sub"));
             Set<String> all = new java.util.TreeSet<>(assignments.ids());
@@ -299,7 +301,7 @@ class GraderAttackTest {
             int status = Main.run(new PrintWriter(new ByteArrayOutputStream(), true),
                     new PrintWriter(err, true, StandardCharsets.UTF_8), "grade", sub.toString(), "--out", out.toString(),
                     "--root", root.toString(), "--quiet", "--test-timeout", "10", "--milestone-timeout", "120",
-                    "--heap", "256", "--sandbox", mode, "--sandbox-user", user);
+                    "--heap", "256", "--sandbox", mode, "--sandbox-user", user, "--cache", cache.toString());
             assertEquals(0, status, () -> "graded: " + err);
             Thread.sleep(4_500); // past the detached forger's 4 s
             JsonNode r = JSON.readTree(out.resolve("results.json").toFile());
@@ -313,8 +315,10 @@ class GraderAttackTest {
             }
             String text = r.toString() + Files.readString(out.resolve("report.html"));
             Path keyDir = null;
+            // The cache this grading used: the newest one (older keys of other builds may lie beside it).
             try (var s = Files.list(cache)) {
-                keyDir = s.filter(p -> Files.isRegularFile(p.resolve(CacheManifest.FILE))).findFirst().orElse(null);
+                keyDir = s.filter(p -> Files.isRegularFile(p.resolve(CacheManifest.FILE))).max(java.util.Comparator
+                        .comparingLong(p -> p.resolve(CacheManifest.FILE).toFile().lastModified())).orElse(null);
             }
             System.out.println("[attacks] " + mode + " " + (armed ? "armed" : "disarmed") + " " + attacks + ": " + score
                     + " of " + max);

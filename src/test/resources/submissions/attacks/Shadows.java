@@ -14,8 +14,8 @@ import raylab.surface.Surface;
 
 /**
  * A hostile submission written from the starter alone (grader tests only): no shadow test; its
- * static initializer fills every place it can write (1 MB files in its working folder and /tmp,
- * to make other milestones run out of space), and works a covert channel between children: a
+ * static initializer fills every place it can write (1 MB files, 40 at most per place, in its
+ * working folder, /tmp, /dev/shm, /var/tmp, to make other milestones run out of space), and works a covert channel between children: a
  * child that has hidden test classes on its class path writes what it sees into tagged files in
  * every shared place; any other child looks for them and says what it found ("covert: found
  * ..." or "covert: found nothing"). ARMED and TAG are filled in by the test.
@@ -40,9 +40,11 @@ public final class Shadows {
         byte[] mb = new byte[1 << 20];
         for (Path dir : List.of(Path.of("").toAbsolutePath(), Path.of(System.getProperty("java.io.tmpdir")), Path.of("/tmp"),
                 Path.of("/dev/shm"), Path.of("/var/tmp"))) {
-            for (int i = 0; i < 4096; i++) {
+            // 40 MB a place: more than a child's 16 MB scratch space, little enough not to harm
+            // the machine where the disk is not isolated (modes user and none).
+            for (int i = 0; i < 40; i++) {
                 try {
-                    Files.write(dir.resolve("fill-" + System.nanoTime()), mb);
+                    Files.write(dir.resolve("fill-@TAG@-" + System.nanoTime()), mb);
                     total++;
                 } catch (Throwable e) {
                     break;
