@@ -378,9 +378,10 @@ class GraderAttackTest {
         assumeTrue(namespaces(), "unshare cannot create namespaces here");
         Graded a = graded(SUBMISSION_A, true, "namespace", GraderTest.sandboxUser());
         Graded b = graded(SUBMISSION_B, true, "namespace", GraderTest.sandboxUser());
-        // Today the PNG hook (box) still works (renders in the child): see the boundary test below.
+        // The PNG hook forges nothing already: the graded scenes are per-grading variants, whose
+        // references the student never sees (after the boundary, no PNG is even written in the child).
         assertNoForgedPointAndNoneLost(a, disarmed(SUBMISSION_A), Set.of());
-        assertNoForgedPointAndNoneLost(b, disarmed(SUBMISSION_B), Set.of("box"));
+        assertNoForgedPointAndNoneLost(b, disarmed(SUBMISSION_B), Set.of());
         assertNoCovertChannel(a);
         java.util.regex.Matcher disk = java.util.regex.Pattern.compile("disk: wrote (\\d+) MB").matcher(a.text());
         assertTrue(disk.find(), "the disk attack reported: " + excerpt(a.text(), "disk: "));
@@ -399,7 +400,7 @@ class GraderAttackTest {
         Graded a = graded(SUBMISSION_A, true, "user", GraderTest.sandboxUser());
         Graded b = graded(SUBMISSION_B, true, "user", GraderTest.sandboxUser());
         assertNoForgedPointAndNoneLost(a, disarmed(SUBMISSION_A), Set.of());
-        assertNoForgedPointAndNoneLost(b, disarmed(SUBMISSION_B), Set.of("box"));
+        assertNoForgedPointAndNoneLost(b, disarmed(SUBMISSION_B), Set.of());
         // Each child its own uid, its files in /tmp removed when it ends: the channel is empty.
         assertNoCovertChannel(a);
         assertCacheIntact(a);
@@ -428,20 +429,16 @@ class GraderAttackTest {
 
     /**
      * What waits for the boundary (issue 17: student code alone in its process, renders in the
-     * trusted one): the PNG hook forges nothing, and no reference class, hidden test, reference image or grader frame
-     * is within the student code's reach. Run with {@code -Draylab.attacks.afterBoundary=true};
+     * trusted one): no reference class, hidden test, reference image or grader frame is within
+     * the student code's reach. Run with {@code -Draylab.attacks.afterBoundary=true};
      * enable it for good at the merge.
      */
     @Test
     @org.junit.jupiter.api.Tag("after-boundary")
     @org.junit.jupiter.api.condition.EnabledIfSystemProperty(named = "raylab.attacks.afterBoundary", matches = "true")
-    void afterTheBoundaryNoAttackForgesOrFindsAnything() throws Exception {
+    void afterTheBoundaryNothingSecretIsFound() throws Exception {
         assumeTrue(namespaces(), "unshare cannot create namespaces here");
-        Graded a = graded(SUBMISSION_A, true, "namespace", GraderTest.sandboxUser());
-        Graded b = graded(SUBMISSION_B, true, "namespace", GraderTest.sandboxUser());
-        assertNoForgedPointAndNoneLost(a, disarmed(SUBMISSION_A), Set.of());
-        assertNoForgedPointAndNoneLost(b, disarmed(SUBMISSION_B), Set.of());
-        assertNothingSecretFound(b);
+        assertNothingSecretFound(graded(SUBMISSION_B, true, "namespace", GraderTest.sandboxUser()));
     }
 
     private static String excerpt(String text, String around) {
