@@ -325,6 +325,20 @@ class GraderAttackTest {
             return new Graded(r, text, score, max, milestonesOf(attacks), keyDir, tag);
         } finally {
             GraderSetup.deleteTree(work);
+            // What the attacks leave where nothing is isolated (modes user and none).
+            Files.deleteIfExists(Path.of("/tmp/raylab-attack-" + tag + ".txt"));
+            for (Path place : UidSlots.SHARED) {
+                try (var s = Files.list(place)) {
+                    for (Path p : (Iterable<Path>) s::iterator) {
+                        String n = p.getFileName().toString();
+                        if (n.startsWith("fill-" + tag + "-") || n.startsWith("raylab-covert-" + tag)) {
+                            Files.deleteIfExists(p);
+                        }
+                    }
+                } catch (IOException e) {
+                    // not there
+                }
+            }
         }
     }
 
