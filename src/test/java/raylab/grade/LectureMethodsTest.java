@@ -35,15 +35,22 @@ class LectureMethodsTest {
     @TempDir
     Path dir;
 
-    /** Grades the reference overlaid with {@code lecture/NAME} in {@code milestone} alone. */
-    static JsonNode grade(Path dir, String overlay, String milestone) throws IOException {
+    /**
+     * Grades the reference overlaid with a resource submission ({@code lecture/NAME}, or a folder
+     * by absolute path) in the given milestones alone.
+     */
+    static JsonNode grade(Path dir, String overlay, String... milestones) throws IOException {
         Path root = Path.of(System.getProperty("raylab.grade.root", ".")).toAbsolutePath().normalize();
         Path sub = GraderTest.submission(dir, overlay);
         Path out = dir.resolve("out");
         Files.createDirectories(out);
         List<String> args = new ArrayList<>(List.of("grade", sub.toString(), "--out", out.toString(), "--root",
                 root.toString(), "--quiet", "--test-timeout", "60", "--milestone-timeout", "600", "--scene-timeout", "300",
-                "--heap", "256", "--sandbox-user", "", "--milestone", milestone));
+                "--heap", "256", "--sandbox-user", ""));
+        for (String m : milestones) {
+            args.add("--milestone");
+            args.add(m);
+        }
         ByteArrayOutputStream err = new ByteArrayOutputStream();
         int status = Main.run(new PrintWriter(new ByteArrayOutputStream(), true),
                 new PrintWriter(err, true, StandardCharsets.UTF_8), args.toArray(String[]::new));

@@ -173,7 +173,12 @@ public final class Check {
             String why = neither ? "no hit"
                     : returned ? "returned true but did not write the record"
                     : "wrote the record but returned false";
-            String auto = neither ? (s instanceof Triangle tri ? edgeHint(tri, point) : insideHint(s, ray))
+            String auto = neither ? (s instanceof Triangle tri ? edgeHint(tri, point)
+                    : s instanceof Box && hint == null && zeroAxes(ray) != null
+                            ? zeroAxes(ray) + " here: the ray never crosses those planes. It is inside such a slab for"
+                                    + " every t when min ≤ p ≤ max (the box is closed), outside for every t otherwise:"
+                                    + " decide that without dividing (when p is on a plane, (min − p)/0 = 0/0 = NaN)"
+                            : insideHint(s, ray))
                     : "return true exactly when you write the record";
             fail(message(why, s, ray, expected, rec, returned, auto,
                     hint == null ? null : hint.shownFor(new Failure(neither ? "no hit" : why, ray, normal, rec.normal))));
@@ -211,6 +216,18 @@ public final class Check {
                     hint == null ? null : hint.shownFor(new Failure(problem, ray, normal, rec.normal))));
         }
         return rec;
+    }
+
+    /** "d_x = 0" (or "d_x = d_y = 0") for the zero components of d, or null when there are none. */
+    static String zeroAxes(Ray ray) {
+        StringBuilder b = new StringBuilder();
+        String[] names = {"d_x", "d_y", "d_z"};
+        for (int k = 0; k < 3; k++) {
+            if (ray.d.get(k) == 0) {
+                b.append(names[k]).append(" = ");
+            }
+        }
+        return b.length() == 0 ? null : b.append("0").toString();
     }
 
     /**
