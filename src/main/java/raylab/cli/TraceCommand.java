@@ -55,6 +55,20 @@ public final class TraceCommand implements Callable<Integer> {
             throw UserError.badInput("pixel (" + x + ", " + y + ") is outside the " + scene.width + "x"
                     + scene.height + " image of " + scenePath);
         }
+        try {
+            return trace(out, scene, x, y);
+        } catch (RuntimeException | StackOverflowError e) {
+            java.util.List<String> files = StudentFault.studentFiles(Path.of("").toAbsolutePath());
+            if (!StudentFault.isStudents(e, files)) {
+                throw e;
+            }
+            out.flush();
+            throw new UserError(StudentFault.describe(e, files, "while tracing pixel (" + x + ", " + y + ") of "
+                    + raylab.scene.Display.path(scenePath)).orElseThrow(), Main.FAILED);
+        }
+    }
+
+    private int trace(PrintWriter out, Scene scene, int x, int y) {
         RenderPlan plan = new RenderPlan(scene);
         Renderer renderer = new Renderer(scene, plan, Mode.FULL);
         Shader shader = new Shader(scene, renderer.root(), plan, Mode.FULL);
