@@ -70,7 +70,7 @@ class HelpTest {
     @Test
     void theCommandsAreListed() {
         List<List<String>> all = commands(Main.commandLine(), List.of());
-        for (String c : List.of("render", "trace", "check", "bench")) {
+        for (String c : List.of("render", "trace", "check", "bench", "submit-check")) {
             assertTrue(all.contains(List.of(c)), "command " + c + " in " + all);
         }
     }
