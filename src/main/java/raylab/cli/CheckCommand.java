@@ -39,9 +39,17 @@ public final class CheckCommand implements Callable<Integer> {
             description = "Also write Classroom 50's result.json to FILE (what its autograder.py runs).")
     Path classroom50;
 
+    @Option(names = "--watch", description = "Run again after every save of one of your files (clearing the screen"
+            + " each time); Ctrl-C stops.")
+    boolean watch;
+
     @Override
     public Integer call() throws Exception {
         PrintWriter out = spec.commandLine().getOut();
+        if (watch) {
+            return Watch.run(out, Watch.without(spec.commandLine().getParseResult().originalArgs().toArray(String[]::new)),
+                    List.of());
+        }
         Path root = Path.of("").toAbsolutePath();
         if (threads < 1) {
             throw UserError.badInput("--threads must be at least 1, got " + threads);

@@ -75,9 +75,17 @@ public final class RenderCommand implements Callable<Integer> {
     @Option(names = {"-q", "--quiet"}, description = "Print only errors and the comparison result.")
     boolean quiet;
 
+    @Option(names = "--watch", description = "Run again after every save of one of your files (clearing the screen"
+            + " each time, also after a save of the scene; the image in out/ stays fresh); Ctrl-C stops.")
+    boolean watch;
+
     @Override
     public Integer call() throws Exception {
         PrintWriter out = spec.commandLine().getOut();
+        if (watch) {
+            return Watch.run(out, Watch.without(spec.commandLine().getParseResult().originalArgs().toArray(String[]::new)),
+                    List.of(scenePath.toAbsolutePath()));
+        }
         if (threads < 1) {
             throw UserError.badInput("--threads must be at least 1, got " + threads);
         }
