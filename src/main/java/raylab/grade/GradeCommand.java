@@ -75,6 +75,10 @@ public final class GradeCommand implements Callable<Integer> {
             description = "With --prairielearn: include the hidden tests (a regrade after the due date).")
     boolean afterDueDate;
 
+    @Option(names = "--seed", paramLabel = "N", description = {"Seed of the graded scenes' variants (default: drawn fresh;",
+        "the report names it, so that a regrade with --seed N grades the same variants)."})
+    Long seed;
+
     @Override
     public Integer call() throws IOException {
         if (!Files.isDirectory(submission) && !Files.isRegularFile(submission)) {
@@ -95,7 +99,7 @@ public final class GradeCommand implements Callable<Integer> {
                 ? o.cacheDir() : cache.toAbsolutePath(), o.sandboxUser(), o.parallel()).withSandboxMode(mode(sandbox));
         Path pl = prairielearn == null ? null : prairielearn.toAbsolutePath();
         boolean after = afterDueDate;
-        return run(o, submission, out, s -> {
+        return run(o, seed == null ? GradedScenes.freshSeed() : seed, submission, out, s -> {
             if (!quiet) {
                 System.err.println(s);
             }
@@ -128,12 +132,15 @@ public final class GradeCommand implements Callable<Integer> {
      */
     static int run(Grader.Options o, Path submission, Path out, java.util.function.Consumer<String> log, boolean quiet,
             PrintStream stdout) {
-        return run(o, submission, out, log, quiet, stdout, null);
+        return run(o, GradedScenes.freshSeed(), submission, out, log, quiet, stdout, null);
     }
 
-    /** As above; {@code also} writes a platform's file from the same report (after the others). */
-    static int run(Grader.Options o, Path submission, Path out, java.util.function.Consumer<String> log, boolean quiet,
-            PrintStream stdout, java.util.function.Consumer<GradeReport> also) {
+    /**
+     * As above, with the seed of the graded scenes' variants; {@code also} writes a platform's
+     * file from the same report (after the others).
+     */
+    static int run(Grader.Options o, long seed, Path submission, Path out, java.util.function.Consumer<String> log,
+            boolean quiet, PrintStream stdout, java.util.function.Consumer<GradeReport> also) {
         long t0 = System.nanoTime();
         GradeReport report = null;
         int status = 0;
@@ -146,7 +153,7 @@ public final class GradeCommand implements Callable<Integer> {
                 System.err.println("raylab: " + oneLine(submission + ": no such file or directory"));
                 status = 2;
             } else {
-                report = new Grader(o, log).grade(submission);
+                report = new Grader(o, log).seed(seed).grade(submission);
             }
         } catch (Throwable e) {
             report = null;

@@ -90,9 +90,18 @@ public final class Reports {
 
     /**
      * Gradescope's results.json. The top-level {@code output} is HTML ({@code output_format:
-     * "html"} in Gradescope's autograder specification): scores, each scene's three images and
-     * every failed visible test's message, see {@link HtmlReport}. Each test's own output is
-     * text. Scores are rounded to cents; a milestone's tests add up to its points exactly.
+     * "html"} in Gradescope's autograder specification): visible scores, what to fix first, each
+     * scene's images and every failed visible test's message, see {@link HtmlReport}. Each test's
+     * own output is text, with its zero-point note. Scores are rounded to cents; a milestone's
+     * tests add up to its points exactly.
+     *
+     * <p>What Gradescope shows before the due date: the top-level {@code output} always (so it
+     * holds no hidden score, total or message), each test entry by its {@code visibility}
+     * (hidden tests carry the assignment's {@code hiddenVisibility}), standard output never
+     * ({@code stdout_visibility: "hidden"}), and the top-level {@code score} only when no test is
+     * hidden ("If test cases are hidden, students will not be able to see their total score",
+     * Gradescope's autograder specification, Controlling test case visibility). So the total
+     * stays the full grade, hidden tests included, and is shown once they are.
      */
     public static String gradescope(GradeReport r) throws IOException {
         Map<String, Object> root = new LinkedHashMap<>();
@@ -119,6 +128,9 @@ public final class Reports {
                 String out = t.passed() ? "" : t.message();
                 if (t.images() != null && !t.images().metric().isEmpty() && t.passed()) {
                     out = t.images().metric();
+                }
+                if (!t.note().isEmpty()) {
+                    out += (out.isEmpty() ? "" : "\n\n") + "Note (no points taken): " + t.note();
                 }
                 if (!t.output().isBlank()) {
                     out += (out.isEmpty() ? "" : "\n\n") + (t.output().contains("more bytes of output dropped")
