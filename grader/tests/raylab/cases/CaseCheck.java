@@ -42,8 +42,9 @@ public final class CaseCheck {
         boolean hit = Check.intersect(s, rec, ray);
         JsonNode e = c.get("expect");
         double tol = num(e.get("tolerance"), 1e-6);
-        String ctx = "\n  case: " + c.path("name").asText() + "\n  ray: " + ray + "\n  surface: " + c.get("surface")
-                + (c.hasNonNull("hint") ? "\n  hint: " + c.get("hint").asText() : "");
+        String ctx = "\n  case:     " + c.path("name").asText() + "\n  surface:  " + Check.describe(s)
+                + "\n  ray:      " + Check.describe(ray)
+                + (c.hasNonNull("hint") ? "\nHINT: " + c.get("hint").asText() : "");
         if (!e.path("hit").asBoolean()) {
             if (hit || rec.t != before || rec.surface != null) {
                 fail("expected no hit, but intersect returned " + hit + " and the record is: " + rec + ctx);
@@ -70,7 +71,8 @@ public final class CaseCheck {
             }
         }
         if (rec.surface != s) {
-            fail("the record should name the surface that was hit, but names " + rec.surface + ctx);
+            fail("the record should name the surface that was hit, but names "
+                    + (rec.surface == null ? "none" : Check.describe(rec.surface)) + ctx);
         }
     }
 

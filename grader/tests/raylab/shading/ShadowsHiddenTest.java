@@ -230,10 +230,12 @@ class ShadowsHiddenTest {
     }
 
     @Test
-    @DisplayName("points on a contact line are not blocked by the touching box")
-    void pointsOnAContactLineAreNotBlockedByTheTouchingBox() {
-        // A box stands on the floor; points on the floor exactly along the foot of its face x = 1,
-        // lights on the open side: the box touches each shadow ray only at t = 0.
+    @DisplayName("points on the floor beside a box are lit from the open side")
+    void pointsOnTheFloorBesideABoxAreLitFromTheOpenSide() {
+        // A box stands on the floor; points on the floor 0.01 to 0.5 in front of its face x = 1,
+        // lights on the open side: the floor touches each shadow ray at t = 0, the box not at all.
+        // (Points exactly on the contact line, a set of measure zero, are left open: either answer
+        // is right there, so no test uses them.)
         Box floor = new Box(new Vec3(-50, -1, -50), new Vec3(50, 0, 50), M, "floor");
         Box block = new Box(new Vec3(1, 0, -4), new Vec3(3, 2, 4), M, "block on the floor");
         Group scene = new Group(List.of(floor, block), "scene");
@@ -241,13 +243,13 @@ class ShadowsHiddenTest {
         long seed = 0xc07aL;
         SplittableRandom r = Hidden.rng(seed);
         for (int i = 0; i < 100; i++) {
-            Vec3 x = new Vec3(1, 0, uniform(r, -3.5, 3.5));
-            PointLight l = light(new Vec3(uniform(r, -20, 0.5), uniform(r, 1, 20), uniform(r, -20, 20)));
+            Vec3 x = new Vec3(1 - uniform(r, 0.01, 0.5), 0, uniform(r, -3.5, 3.5));
+            PointLight l = light(new Vec3(uniform(r, -20, x.x), uniform(r, 1, 20), uniform(r, -20, 20)));
             assertFalse(Shadows.isShadowed(scene, x, n, l, new IntersectionRecord()),
-                    "expected lit: x lies where the box meets the floor and the light is on the open side #" + i
+                    "expected lit: x lies on the floor in front of the box and the light is on the open side #" + i
                             + " (seed " + seed + ")" + ctx(scene, x, n, l)
-                            + "\n  hint: only blockers with 0 < t < 1 count; tMin = 0 on a closed range counts the box"
-                            + " touching x at t = 0: raise tMin above 0");
+                            + "\n  hint: only blockers with 0 < t < 1 count; tMin = 0 on a closed range counts the floor"
+                            + " touching x at t = 0: raise tMin above 0, or start the ray a small ε off the floor");
         }
     }
 }

@@ -293,7 +293,10 @@ class BoxHiddenTest {
         }
     }
 
-    /** A flat box (min = max along one axis, allowed by the scene format) is entered and left at one t. */
+    /**
+     * A flat box (min = max along one axis, allowed by the scene format) is entered and left at one
+     * t; the normal may be either face's.
+     */
     @Test
     @DisplayName("flat boxes (min = max along one axis) are hit from either side")
     void flatBoxesAreHitFromEitherSide() {
@@ -309,7 +312,10 @@ class BoxHiddenTest {
             double t = uniform(r, 0.5, 30) / d.length();
             Ray ray = new Ray(x.minus(d.times(t)), d);
             IntersectionRecord rec = new IntersectionRecord();
-            assertHit("flat box #" + i + " (seed " + seed + ")", b, ray, rec, Calls.intersect(b, rec, ray), t, x, n,
+            // Both faces of the flat slab are met at the same t: either outward normal is a valid
+            // answer (the lecture leaves the choice open, and the renderer turns n toward the viewer).
+            assertHit("flat box #" + i + " (seed " + seed + ")", b, ray, rec, Calls.intersect(b, rec, ray), t, x,
+                    java.util.List.of(n, n.negate()),
                     "min = max along one axis: the ray enters and leaves that slab at the same t, so t_enter = t_exit;"
                             + " it misses only when t_enter > t_exit");
         }

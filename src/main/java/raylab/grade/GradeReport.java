@@ -5,7 +5,7 @@ import java.util.List;
 /**
  * Everything one grading produced: per milestone its graded tests (unit tests, data cases and
  * scenes), and the files that were ignored. The report writers turn it into results.json,
- * classroom.json, junit.xml, report.html and the console table.
+ * junit.xml, report.html, PrairieLearn's results.json and the console table.
  *
  * @param milestones  graded milestones in course order
  * @param accepted    submitted files that were graded ("src/main/java/raylab/surface/Sphere.java <- Sphere.java")
@@ -63,9 +63,27 @@ public record GradeReport(List<Milestone> milestones, List<String> accepted, Lis
      * @param millis     duration
      * @param file       source file of the test or scene, for reports
      * @param images     student, reference and diff images for scenes (null otherwise)
+     * @param note       a zero-point note: a correct result that cost more than the render plan
+     *                   needs ("your loop traced 2 shadow rays the plan could skip"), never a
+     *                   reason for lost points; empty if none ({@link raylab.course.Notes})
      */
     public record Test(String milestone, String name, Kind kind, double maxScore, double score, boolean passed,
-            String message, String output, String visibility, long millis, String file, Images images) {
+            String message, String output, String visibility, long millis, String file, Images images, String note) {
+        public Test {
+            note = note == null ? "" : note;
+        }
+
+        /** Without a note. */
+        public Test(String milestone, String name, Kind kind, double maxScore, double score, boolean passed,
+                String message, String output, String visibility, long millis, String file, Images images) {
+            this(milestone, name, kind, maxScore, score, passed, message, output, visibility, millis, file, images, "");
+        }
+
+        /** The same with this note. */
+        public Test withNote(String n) {
+            return new Test(milestone, name, kind, maxScore, score, passed, message, output, visibility, millis, file,
+                    images, n);
+        }
     }
 
     /** PNG bytes of a scene's render, its reference and the diff heatmap, and the metric line. */

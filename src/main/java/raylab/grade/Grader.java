@@ -135,6 +135,8 @@ public final class Grader {
         });
         GraderSetup setup = GraderSetup.prepare(root, selected, options.cacheDir().toAbsolutePath(), log);
         notes.addAll(setup.notes);
+        // Mode none: children could write the cache; it is checked against this manifest at the end.
+        CacheManifest.Guard cacheGuard = sandbox.mode() == Sandbox.Mode.NONE ? CacheManifest.guard(setup.dir) : null;
         this.allAssignments = all.all();
         this.hiddenTexts = hiddenTexts(setup, all.all());
         // Every reference image is read before any student code runs.
@@ -198,6 +200,9 @@ public final class Grader {
         } finally {
             pool.shutdownNow();
             GraderSetup.deleteTree(work);
+            if (cacheGuard != null) {
+                cacheGuard.check().ifPresent(notes::add);
+            }
         }
         return new GradeReport(List.copyOf(results.values()), accepted, ignored, notes,
                 (System.nanoTime() - t0) / 1e9);
@@ -334,7 +339,7 @@ public final class Grader {
             return t;
         }
         return new GradeReport.Test(t.milestone(), t.name(), t.kind(), t.maxScore(), t.score(), t.passed(), m, o,
-                t.visibility(), t.millis(), t.file(), t.images());
+                t.visibility(), t.millis(), t.file(), t.images(), withheld(t.note()));
     }
 
     private String withheld(String text) {
@@ -613,6 +618,7 @@ public final class Grader {
             String message = "";
             String output = "";
             long ms = 0;
+            String note = "";
             int failedCount = 0;
             for (TestResult e : g) {
                 TestResult r = got.get(e.id());
@@ -620,6 +626,7 @@ public final class Grader {
                     r = e.with(TestResult.Status.MISSING, "no result was reported for this test");
                 }
                 ms += r.millis();
+                note = raylab.course.Notes.add(note, r.output());
                 if (!r.status().passed()) {
                     failedCount++;
                     if (passed) {
@@ -637,8 +644,9 @@ public final class Grader {
             }
             String file = kind == Kind.CASE ? (cases.get(first.method()) == null ? "" : cases.get(first.method()).file())
                     : testFile(a, first.className());
-            out.add(new GradeReport.Test(a.id(), name, kind, points, passed ? points : 0, passed, message, output,
-                    visibility, ms, file, null));
+            out.add(new GradeReport.Test(a.id(), name, kind, points, passed ? points : 0, passed,
+                    raylab.course.Messages.plain(message), raylab.course.Notes.strip(output), visibility, ms, file, null)
+                    .withNote(note));
         }
         return out;
     }
@@ -697,7 +705,9 @@ public final class Grader {
         });
         Path scenes = box.run().resolve("scenes");
         copyScenes(scenesCopy, scenes);
-        List<String> cmd = new ArrayList<>(box.wrapper());
+        Duration limit = options.sceneLimit().multipliedBy(a.scenes().size());
+        // The sandbox stops the renders at the limit itself and still hands back the images made.
+        List<String> cmd = new ArrayList<>(box.wrapper(limit));
         cmd.addAll(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
                 "-Xmx" + options.sceneHeapMb() + "m", "-XX:+ExitOnOutOfMemoryError", "-Djava.awt.headless=true", "-XX:+DisableAttachMechanism",
                 "-XX:-UsePerfData", "--limit-modules", TestLauncher.CHILD_MODULES, "-cp",
@@ -715,7 +725,6 @@ public final class Grader {
             pngs.add(png);
         }
         long t0 = System.nanoTime();
-        Duration limit = options.sceneLimit().multipliedBy(a.scenes().size());
         boolean timedOut = false;
         List<byte[]> images = new ArrayList<>();
         List<String> errors = new ArrayList<>();
@@ -726,7 +735,8 @@ public final class Grader {
             p = pb.start();
             p.getOutputStream().close();
             try {
-                if (!p.waitFor(limit.toMillis(), java.util.concurrent.TimeUnit.MILLISECONDS)) {
+                if (!p.waitFor(limit.toMillis() + 5_000, java.util.concurrent.TimeUnit.MILLISECONDS)
+                        || p.exitValue() == Sandbox.DEADLINE_STATUS) {
                     timedOut = true;
                 }
             } catch (InterruptedException e) {

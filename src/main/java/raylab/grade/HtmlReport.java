@@ -65,21 +65,69 @@ final class HtmlReport {
                 + "</body></html>\n";
     }
 
+    /** What the students' page says in place of any score that includes hidden tests. */
+    static final String HIDDEN_AFTER_DUE = "hidden: results after the due date";
+
+    /** Whether the students may see this item's result now (before the due date). */
+    static boolean shownNow(GradeReport.Test t) {
+        return "visible".equals(t.visibility());
+    }
+
+    private static double visibleScore(List<GradeReport.Test> tests) {
+        return GradeReport.round(tests.stream().filter(HtmlReport::shownNow).mapToDouble(GradeReport.Test::score).sum());
+    }
+
+    private static double visibleMax(List<GradeReport.Test> tests) {
+        return GradeReport.round(tests.stream().filter(HtmlReport::shownNow).mapToDouble(GradeReport.Test::maxScore).sum());
+    }
+
+    private static double hiddenMax(List<GradeReport.Test> tests) {
+        return GradeReport.round(tests.stream().filter(t -> !shownNow(t)).mapToDouble(GradeReport.Test::maxScore).sum());
+    }
+
+    /** The anchor of a graded item on the page. */
+    private static String anchor(GradeReport.Milestone m, int index) {
+        return "item-" + m.id().replaceAll("[^A-Za-z0-9_-]", "_") + "-" + index;
+    }
+
+    /** How many failing items the list at the top names (the rest: "and N more below"). */
+    static final int FIX_FIRST = 8;
+
     /**
-     * @param students  the students' version (no hidden messages, ignored files as one line)
+     * @param students  the students' version (no hidden messages or scores, ignored files as one line)
      * @param maxWidth  0: images as rendered; > 0: at most this many pixels wide; -1: no images
      */
     private static String build(GradeReport r, boolean students, int maxWidth) {
         StringBuilder b = new StringBuilder();
         b.append("<div style=\"font-family:sans-serif;max-width:100%;overflow-wrap:anywhere\">\n");
-        b.append("<h1 style=\"font-size:140%\">Score ").append(fmt(r.score())).append(" / ").append(fmt(r.maxScore()))
-                .append("</h1>\n");
+        List<GradeReport.Test> all = r.milestones().stream().flatMap(m -> m.tests().stream()).toList();
+        if (students) {
+            // Before the due date Gradescope shows this page to students at once: only what they
+            // can see anyway (visible tests, visible data cases, scenes), never a total with hidden points.
+            b.append("<h1 style=\"font-size:140%\">Visible results ").append(fmt(visibleScore(all))).append(" / ")
+                    .append(fmt(visibleMax(all))).append("</h1>\n");
+            if (hiddenMax(all) > 0) {
+                b.append("<p>").append(HIDDEN_AFTER_DUE).append(" (hidden tests and data cases, ")
+                        .append(fmt(hiddenMax(all))).append(" points).</p>\n");
+            }
+        } else {
+            b.append("<h1 style=\"font-size:140%\">Score ").append(fmt(r.score())).append(" / ").append(fmt(r.maxScore()))
+                    .append("</h1>\n");
+        }
+        fixFirst(b, r, students);
         b.append("<table style=\"border-collapse:collapse\">");
         for (GradeReport.Milestone m : r.milestones()) {
-            b.append("<tr><td style=\"padding:2px 8px\"><b>").append(esc(m.id())).append("</b></td>")
-                    .append("<td style=\"padding:2px 8px;text-align:right\">").append(fmt(m.score())).append(" / ")
-                    .append(fmt(m.maxScore())).append("</td><td style=\"padding:2px 8px\">").append(esc(m.title()))
-                    .append("</td></tr>");
+            b.append("<tr><td style=\"padding:2px 8px\"><b><a href=\"#").append(esc(m.id())).append("\">")
+                    .append(esc(m.id())).append("</a></b></td>")
+                    .append("<td style=\"padding:2px 8px;text-align:right\">");
+            if (students) {
+                b.append("visible ").append(fmt(visibleScore(m.tests()))).append(" / ").append(fmt(visibleMax(m.tests())))
+                        .append("</td><td style=\"padding:2px 8px;color:#555\">")
+                        .append(hiddenMax(m.tests()) > 0 ? HIDDEN_AFTER_DUE : "");
+            } else {
+                b.append(fmt(m.score())).append(" / ").append(fmt(m.maxScore()));
+            }
+            b.append("</td><td style=\"padding:2px 8px\">").append(esc(m.title())).append("</td></tr>");
         }
         b.append("</table>\n");
         if (students) {
@@ -111,37 +159,99 @@ final class HtmlReport {
         return b.toString();
     }
 
+    /**
+     * The list at the top: the failing items the reader may see, in handout order (milestone by
+     * milestone, tests in the handout's order, then data cases, then scenes), each with the first
+     * line of its message and a link to its section.
+     */
+    private static void fixFirst(StringBuilder b, GradeReport r, boolean students) {
+        List<String> items = new java.util.ArrayList<>();
+        for (GradeReport.Milestone m : r.milestones()) {
+            List<GradeReport.Test> ts = m.tests();
+            for (Kind k : List.of(Kind.VISIBLE, Kind.HIDDEN, Kind.CASE, Kind.SCENE)) {
+                for (int i = 0; i < ts.size(); i++) {
+                    GradeReport.Test t = ts.get(i);
+                    if (t.kind() != k || t.passed() || (students && !shownNow(t))) {
+                        continue;
+                    }
+                    String first = GraderSetup.firstLine(t.message()).strip();
+                    items.add("<li style=\"margin:2px 0\"><a href=\"#" + anchor(m, i) + "\">" + esc(m.id()) + ": "
+                            + esc(t.name()) + "</a>" + (first.isEmpty() ? "" : " — " + esc(clip(first, 160))) + "</li>");
+                }
+            }
+        }
+        b.append("<div id=\"fix-first\" style=\"margin:8px 0;padding:6px 10px;border-left:4px solid ")
+                .append(items.isEmpty() ? "#16702e" : "#b00020").append(";background:#fafafa\">");
+        if (items.isEmpty()) {
+            b.append("<b>Nothing to fix:</b> every ").append(students ? "visible " : "")
+                    .append("test, data case and scene passes.");
+        } else {
+            b.append("<b>What to fix first</b> (in the handouts' order)<ol style=\"margin:4px 0\">");
+            items.stream().limit(FIX_FIRST).forEach(b::append);
+            b.append("</ol>");
+            if (items.size() > FIX_FIRST) {
+                b.append("<div>and ").append(items.size() - FIX_FIRST).append(" more below.</div>");
+            }
+        }
+        b.append("</div>\n");
+    }
+
+    private static String clip(String s, int n) {
+        return s.length() <= n ? s : s.substring(0, n - 1) + "…";
+    }
+
     private static void milestone(StringBuilder b, GradeReport.Milestone m, boolean students, int maxWidth) {
         b.append("<h2 id=\"").append(esc(m.id())).append("\" style=\"font-size:120%;border-bottom:1px solid #ccc\">")
-                .append(esc(m.id())).append(": ").append(esc(m.title())).append(" (").append(fmt(m.score())).append(" / ")
-                .append(fmt(m.maxScore())).append(")</h2>\n");
+                .append(esc(m.id())).append(": ").append(esc(m.title())).append(" (");
+        if (students) {
+            b.append("visible ").append(fmt(visibleScore(m.tests()))).append(" / ").append(fmt(visibleMax(m.tests())));
+            if (hiddenMax(m.tests()) > 0) {
+                b.append("; ").append(HIDDEN_AFTER_DUE);
+            }
+        } else {
+            b.append(fmt(m.score())).append(" / ").append(fmt(m.maxScore()));
+        }
+        b.append(")</h2>\n");
         for (String n : m.notes()) {
             b.append("<pre style=\"").append(PRE).append(";color:#b00020\">").append(esc(n)).append("</pre>\n");
         }
         int shownHidden = 0;
         double hiddenMax = 0;
-        double hiddenScore = 0;
         int passed = 0;
         int total = 0;
         StringBuilder failures = new StringBuilder();
-        for (GradeReport.Test t : m.tests()) {
+        StringBuilder notes = new StringBuilder();
+        StringBuilder failedScenes = new StringBuilder();
+        StringBuilder matchingScenes = new StringBuilder();
+        int matching = 0;
+        for (int i = 0; i < m.tests().size(); i++) {
+            GradeReport.Test t = m.tests().get(i);
             if (t.kind() == Kind.SCENE) {
-                scene(b, t, maxWidth);
+                if (t.passed() && students) {
+                    matching++;
+                    scene(matchingScenes, t, maxWidth < 0 ? -1 : SMALL, anchor(m, i), false);
+                } else {
+                    scene(failedScenes, t, maxWidth, anchor(m, i), true);
+                }
                 continue;
             }
-            boolean secret = students && !"visible".equals(t.visibility());
+            boolean secret = students && !shownNow(t);
             if (secret) {
                 shownHidden++;
                 hiddenMax += t.maxScore();
-                hiddenScore += t.score();
                 continue;
             }
             total++;
+            if (!t.note().isEmpty()) {
+                notes.append("<div style=\"margin:6px 0\"><b style=\"color:#555\">NOTE</b> ").append(esc(t.name()))
+                        .append(" <span style=\"color:#555\">(no points taken)</span><pre style=\"").append(PRE)
+                        .append("\">").append(esc(t.note())).append("</pre></div>\n");
+            }
             if (t.passed()) {
                 passed++;
                 continue;
             }
-            failures.append("<div style=\"margin:8px 0\"><b style=\"color:#b00020\">FAIL</b> ")
+            failures.append("<div id=\"").append(anchor(m, i)).append("\" style=\"margin:8px 0\"><b style=\"color:#b00020\">FAIL</b> ")
                     .append(esc(t.name())).append(" <span style=\"color:#555\">(").append(esc(label(t)))
                     .append(", 0 / ").append(fmt(t.maxScore())).append(")</span>")
                     .append("<pre style=\"").append(PRE).append("\">").append(esc(t.message().strip())).append("</pre>");
@@ -157,11 +267,21 @@ final class HtmlReport {
                     .append(" tests and data cases passed.</p>\n");
         }
         b.append(failures);
+        b.append(notes);
+        b.append(failedScenes);
+        if (matching > 0) {
+            b.append("<details style=\"margin:8px 0\"><summary>").append(matching).append(" matching scene")
+                    .append(matching == 1 ? "" : "s").append(" (your render beside the reference, small)</summary>")
+                    .append(matchingScenes).append("</details>\n");
+        }
         if (shownHidden > 0) {
-            b.append("<p>Hidden tests: ").append(shownHidden).append(", ").append(fmt(hiddenMax))
-                    .append(" points; their results are shown when your instructors release them.</p>\n");
+            b.append("<p>Hidden tests and data cases: ").append(shownHidden).append(", ").append(fmt(hiddenMax))
+                    .append(" points; ").append(HIDDEN_AFTER_DUE).append(".</p>\n");
         }
     }
+
+    /** Width of the folded images of matching scenes on the students' page. */
+    static final int SMALL = 160;
 
     private static String label(GradeReport.Test t) {
         return switch (t.kind()) {
@@ -172,8 +292,8 @@ final class HtmlReport {
         };
     }
 
-    private static void scene(StringBuilder b, GradeReport.Test t, int maxWidth) {
-        b.append("<div style=\"margin:12px 0;padding:8px;border:1px solid #ddd;border-radius:4px\">")
+    private static void scene(StringBuilder b, GradeReport.Test t, int maxWidth, String id, boolean withDiff) {
+        b.append("<div id=\"").append(id).append("\" style=\"margin:12px 0;padding:8px;border:1px solid #ddd;border-radius:4px\">")
                 .append("<div><b style=\"color:").append(t.passed() ? "#16702e\">MATCH" : "#b00020\">DIFFERS")
                 .append("</b> ").append(esc(t.name())).append(" <span style=\"color:#555\">(").append(fmt(t.score()))
                 .append(" / ").append(fmt(t.maxScore())).append(")</span></div>");
@@ -185,11 +305,14 @@ final class HtmlReport {
         }
         if (im != null && maxWidth >= 0) {
             b.append("<div style=\"display:flex;flex-wrap:wrap;gap:8px;margin-top:6px\">");
-            figure(b, "your render", im.student(), maxWidth);
-            figure(b, "reference", im.reference(), maxWidth);
-            figure(b, "difference (heatmap)", im.diff(), maxWidth);
+            String fig = withDiff ? FIG : "flex:0 1 " + maxWidth + "px;min-width:0;margin:0";
+            figure(b, "your render", im.student(), maxWidth, fig);
+            figure(b, "reference", im.reference(), maxWidth, fig);
+            if (withDiff) {
+                figure(b, "difference (heatmap)", im.diff(), maxWidth, fig);
+            }
             b.append("</div>");
-            if (im.diff() != null) {
+            if (withDiff && im.diff() != null) {
                 b.append("<div style=\"font-size:85%;margin-top:4px\">Heatmap: <img alt=\"heatmap legend\" src=\"")
                         .append(LEGEND).append("\" style=\"vertical-align:middle;width:160px;height:10px;border:1px solid #999\">")
                         .append(" black where the pixels are equal, then red, yellow and white at the largest difference."
@@ -200,8 +323,8 @@ final class HtmlReport {
         b.append("</div>\n");
     }
 
-    private static void figure(StringBuilder b, String caption, byte[] png, int maxWidth) {
-        b.append("<figure style=\"").append(FIG).append("\">");
+    private static void figure(StringBuilder b, String caption, byte[] png, int maxWidth, String style) {
+        b.append("<figure style=\"").append(style).append("\">");
         byte[] shown = png == null ? null : scaled(png, maxWidth);
         if (shown == null) {
             b.append("<div style=\"height:60px;border:1px dashed #999;text-align:center;padding-top:20px\">(none)</div>");

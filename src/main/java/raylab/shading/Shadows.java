@@ -23,7 +23,7 @@ public final class Shadows {
      * light itself. Only blockers strictly between the point and the light count: the open
      * range 0 &lt; t &lt; 1. A surface the light lies exactly on (a lamp standing on the floor,
      * hit at t = 1) does not block it, and neither does a surface touching x itself (hit at
-     * t = 0, as at the line where a box stands on the floor). A {@link Ray}'s range is closed,
+     * t = 0, as the floor x lies on). A {@link Ray}'s range is closed,
      * [tMin, tMax], so the open range is tMin &gt; 0 and tMax = {@code Math.nextDown(1.0)}, the
      * largest double below 1. Because x was computed with rounding error it may lie just below
      * the surface, so a ray starting exactly at x can hit the very surface it starts on (shadow

@@ -68,10 +68,19 @@ class BrowserReportTest {
                 var r = e.getBoundingClientRect();
                 if (r.right > window.innerWidth + 0.5) { over.push(e.tagName + ':' + Math.round(r.right)); }
               });
+              var fix = document.getElementById('fix-first');
+              var items = fix ? fix.querySelectorAll('li') : [];
+              var links = fix ? Array.prototype.slice.call(fix.querySelectorAll('a[href^="#"]')) : [];
+              var dangling = links.filter(function (a) { return !document.getElementById(a.getAttribute('href').substring(1)); }).length;
+              var firstImg = document.images.length ? document.images[0].getBoundingClientRect().top : 1e9;
               var out = document.createElement('pre');
               out.id = 'raylab-probe';
               out.textContent = 'images=' + imgs.length + ' broken=' + broken + ' width=' + window.innerWidth
-                  + ' scrollWidth=' + document.documentElement.scrollWidth + ' over=' + over.length + ' ' + over.slice(0, 5).join(',');
+                  + ' scrollWidth=' + document.documentElement.scrollWidth + ' over=' + over.length + ' ' + over.slice(0, 5).join(',')
+                  + ' fix=' + items.length + ' dangling=' + dangling
+                  + ' fixTop=' + (fix ? Math.round(fix.getBoundingClientRect().top) : -1)
+                  + ' fixBeforeImages=' + (fix ? (fix.getBoundingClientRect().bottom <= firstImg) : false)
+                  + ' fixText=' + (fix ? JSON.stringify(fix.textContent) : '""');
               document.body.appendChild(out);
             });
             </script>
@@ -107,6 +116,11 @@ class BrowserReportTest {
                 "src/test/java/raylab/material/BlinnPhongTest.java", null));
         tests.add(new GradeReport.Test("phong", "hidden one", Kind.HIDDEN, 0.5, 0, false, "secret message", "",
                 "after_due_date", 3, "grader/tests/x.java", null));
+        tests.add(new GradeReport.Test("phong", "a passing test with a note", Kind.VISIBLE, 0.5, 0.5, true, "", "",
+                "visible", 3, "src/test/java/raylab/material/BlinnPhongTest.java", null)
+                .withNote("your loop traced 2 shadow rays the plan could skip"));
+        tests.add(new GradeReport.Test("phong", "data case: a wrong case", Kind.CASE, 0.25, 0, false,
+                "expected a hit at t = 2 but intersect returned false", "", "visible", 3, "cases/x.json", null));
         tests.add(new GradeReport.Test("phong", "scenes/showcase.json", Kind.SCENE, 3, 0, false,
                 "the image differs from the reference: " + metric, "", "visible", 300, "scenes/showcase.json", wrong));
         tests.add(new GradeReport.Test("phong", "scenes/sphere.json", Kind.SCENE, 2, 2, true, "", "", "visible", 100,
@@ -157,10 +171,28 @@ class BrowserReportTest {
         String html = HtmlReport.forStudents(r);
         String result = probe(html, "student.html");
         System.out.println("students' output: " + result + " (" + html.length() + " characters)");
-        // 6 scene images + 2 legends.
-        assertTrue(result.startsWith("images=8 broken=0 width=1280 "), result);
+        // The differing scene's 3 images and legend, the matching scene's render and reference (folded, small).
+        assertTrue(result.startsWith("images=6 broken=0 width=1280 "), result);
         assertTrue(result.contains("scrollWidth=1280 over=0"), result);
         assertTrue(!html.contains("secret message") && !html.contains("File12.java"), "no hidden message, no ignored list");
+        // What to fix first: the three failing visible items in handout order (test, data case,
+        // scene), each linking to its section, on the first screen and above every image.
+        assertTrue(result.contains(" fix=3 dangling=0 "), result);
+        int fixTop = Integer.parseInt(result.replaceAll(".* fixTop=(-?\\d+) .*", "$1"));
+        assertTrue(fixTop >= 0 && fixTop < 300, "the list is at the top of the page: " + result);
+        assertTrue(result.contains("fixBeforeImages=true"), result);
+        String fix = result.substring(result.indexOf("fixText="));
+        int test = fix.indexOf("specular term at n.h = 1 is ks * I — wrong colour");
+        int dataCase = fix.indexOf("data case: a wrong case — expected a hit at t = 2");
+        int scene = fix.indexOf("scenes/showcase.json — the image differs");
+        assertTrue(test >= 0 && test < dataCase && dataCase < scene, "one line per item, in handout order: " + fix);
+        assertTrue(!fix.contains("hidden one") && !fix.contains("sphere.json"), "only failing visible items: " + fix);
+        // The matching scene is folded; the note is shown and costs nothing.
+        assertTrue(html.contains("<details style=\"margin:8px 0\"><summary>1 matching scene"), html);
+        assertTrue(html.contains("your loop traced 2 shadow rays the plan could skip") && html.contains("(no points taken)"));
+        // Visible points only, hidden ones named, no total: 2.5 of 6.25 visible points (the hidden 0.5 not counted).
+        assertTrue(html.contains("Visible results 2.5 / 6.25") && html.contains(HtmlReport.HIDDEN_AFTER_DUE), html);
+        assertTrue(!html.contains("Score "), "no total that includes hidden points");
     }
 
     @Test

@@ -108,6 +108,18 @@ class GradescopeOutputTest {
         }
         assertEquals(100L * box.points(), maxCents, "the box's tests add up to its points");
         assertEquals(cents / 100.0, r.get("score").asDouble(), 1e-9);
-        assertTrue(html.contains("Score " + GradingPlan.points(cents) + " / 15"), "score shown: " + html.substring(0, 200));
+        // The page students see at once shows the visible points only, never the total.
+        long visibleCents = 0;
+        long visibleMaxCents = 0;
+        for (JsonNode t : r.get("tests")) {
+            if (t.get("visibility").asText().equals("visible")) {
+                visibleCents += Math.round(t.get("score").asDouble() * 100);
+                visibleMaxCents += Math.round(t.get("max_score").asDouble() * 100);
+            }
+        }
+        assertTrue(visibleMaxCents < maxCents, "the box milestone has hidden tests");
+        assertTrue(html.contains("Visible results " + GradingPlan.points(visibleCents) + " / "
+                + GradingPlan.points(visibleMaxCents)), "visible score shown: " + html.substring(0, 400));
+        assertFalse(html.contains("Score ") || html.contains(" / 15"), "no total with hidden points: " + html.substring(0, 400));
     }
 }

@@ -96,19 +96,23 @@ class ShadowsTest {
         // top face y = 0, so the shadow ray reaches the floor at t = 1, the light itself.
         Sphere ball = ball(0, 3, 0, 1);
         Check.lit(scene(FLOOR, ball), new Vec3(0, 2, 0), new Vec3(0, -1, 0), light(0.5, 0, 0.5),
-                "only blockers strictly before the light count, t < 1: a Ray's range is closed, so use"
+                "the light itself is not a blocker: only t < 1 counts, and a Ray's range is closed, so use"
                         + " tMax = Math.nextDown(1.0), the largest double below 1 (or stop a tiny ε short)");
     }
 
     @Test
-    @DisplayName("a point on the line where a box stands on the floor is not blocked by the box (t = 0)")
-    void contactLine() {
-        // The box stands on the floor; x = (1, 0, 0) lies on the floor and on the box's face
-        // x = 1. The light is on the other side: the shadow ray touches the box only at t = 0.
+    @DisplayName("a point on the floor beside a box is lit from the open side (the floor touches x at t = 0)")
+    void besideABox() {
+        // The box stands on the floor; x = (0.75, 0, 0) lies on the floor, 0.25 in front of the
+        // box's face x = 1, and the light is on the open side. The floor itself touches the shadow
+        // ray at t = 0, where it starts: only blockers with t > 0 count. (Exactly on the line
+        // where the box meets the floor, a set of measure zero that no render shows, either answer
+        // is accepted: no test puts x there.)
         Box block = new Box(new Vec3(1, 0, -1), new Vec3(2, 1, 1), WHITE, "block on the floor");
-        Check.lit(scene(FLOOR, block), new Vec3(1, 0, 0), UP, light(-3, 4, 0),
-                "only blockers strictly after the point count, t > 0: tMin = 0 on a closed range counts a"
-                        + " surface touching x; raise tMin above 0 (for example to Double.MIN_VALUE or ε)");
+        Check.lit(scene(FLOOR, block), new Vec3(0.75, 0, 0), UP, light(-3, 4, 0),
+                "only blockers strictly after the point count, t > 0: tMin = 0 on a closed range counts the"
+                        + " floor x lies on; raise tMin above 0 (for example to Double.MIN_VALUE or ε) or start the"
+                        + " ray a small ε off the surface along n");
     }
 
     @Test

@@ -32,6 +32,29 @@ public final class Check {
     private Check() {
     }
 
+    // ---------------------------------------------------------------- notes
+
+    /**
+     * Reports a zero-point note: the result was right, but it cost more than the render plan
+     * needs. The grader and {@code check} show it beside the test; it never changes a score.
+     */
+    public static void note(String text) {
+        System.out.println(raylab.course.Notes.PREFIX + text);
+    }
+
+    /**
+     * The note for shadow rays the plan could skip: {@code extra} questions
+     * {@code at.visible(light)} for lights with n·l ≤ 0. Nothing when {@code extra} is 0.
+     */
+    public static void skippableShadowRays(int extra) {
+        if (extra > 0) {
+            note("your loop traced " + extra + " shadow ray" + (extra == 1 ? "" : "s") + " the plan could skip:"
+                    + " at.visible(light) was asked for a light with n·l <= 0 (behind the surface or on its horizon),"
+                    + " which adds nothing whatever the answer; test n·l > 0 first and you save the ray (no points"
+                    + " are taken for this)");
+        }
+    }
+
     // ---------------------------------------------------------------- intersections
 
     private static final ExecutorService WORKERS = Executors.newCachedThreadPool(r -> {
@@ -193,8 +216,7 @@ public final class Check {
             IntersectionRecord rec, boolean returned, String... hints) {
         StringBuilder m = new StringBuilder(problem)
                 .append("\n  surface:  ").append(describe(s))
-                .append("\n  ray:      p=").append(ray.p).append(" d=").append(ray.d)
-                .append(" t in [").append(ray.tMin).append(", ").append(ray.tMax).append("]")
+                .append("\n  ray:      ").append(describe(ray))
                 .append("\n  expected: ").append(expected)
                 .append("\n  got:      returned ").append(returned)
                 .append(", record: ").append(rec);
@@ -204,6 +226,11 @@ public final class Check {
             }
         }
         return m.append('\n').toString();
+    }
+
+    /** A ray in the lecture's terms, for messages: r(t) = p + t·d with its range. */
+    public static String describe(Ray ray) {
+        return "p=" + ray.p + " d=" + ray.d + " t in [" + ray.tMin + ", " + ray.tMax + "]";
     }
 
     /** The surface's name and shape, for messages. */
