@@ -1032,7 +1032,9 @@ public final class Grader {
                     String metric = c.summary() + "; allowed: " + String.format(java.util.Locale.ROOT, "%.3f%%",
                             100 * sc.tolerance());
                     msg = passed ? "" : "the image differs from the reference: " + metric
-                            + " (your render, the reference and the difference are shown side by side)";
+                            + " (your render, the reference and the difference are shown side by side)"
+                            + (g != null && g.varied() ? "; this grading renders a variant of the scene (camera,"
+                                    + " lights and placement moved); ./raylab check compares the published one" : "");
                     shown = new GradeReport.Images(mine, refBytes, png(c.diff()), metric);
                 } catch (IOException | RuntimeException e) {
                     msg = "the rendered image could not be compared: " + e.getMessage();
