@@ -59,7 +59,7 @@ public final class BenchCommand implements Callable<Integer> {
     @Option(names = "--threads", split = ",", paramLabel = "N[,N...]",
             description = {"Render threads (default: all cores, ${DEFAULT-VALUE}).",
                 "Several counts (such as 1,2) are timed in turns, run by run, and each is compared with the first:",
-                "speed-up as the median of the paired run ratios with a bootstrap 95% interval."})
+                "speed-up as the median of the paired run ratios with a bootstrap 95%% interval."})
     List<Integer> threadCounts = new ArrayList<>(List.of(Runtime.getRuntime().availableProcessors()));
 
     @Override
