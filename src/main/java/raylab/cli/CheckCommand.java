@@ -35,6 +35,10 @@ public final class CheckCommand implements Callable<Integer> {
     @Option(names = "--threads", paramLabel = "N", description = "Render threads (default: all cores, ${DEFAULT-VALUE}).")
     int threads = Runtime.getRuntime().availableProcessors();
 
+    @Option(names = "--classroom50", paramLabel = "FILE",
+            description = "Also write Classroom 50's result.json to FILE (what its autograder.py runs).")
+    Path classroom50;
+
     @Override
     public Integer call() throws Exception {
         PrintWriter out = spec.commandLine().getOut();
@@ -65,6 +69,9 @@ public final class CheckCommand implements Callable<Integer> {
         }
         printTable(out, outcomes);
         out.flush();
+        if (classroom50 != null) {
+            raylab.course.Classroom50Result.write(classroom50, outcomes, System.getenv(), root);
+        }
         return outcomes.stream().allMatch(MilestoneCheck.Outcome::done) ? Main.OK : Main.FAILED;
     }
 

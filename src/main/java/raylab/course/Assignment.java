@@ -83,10 +83,17 @@ public record Assignment(
      * @param reference reference PNG, relative to the project root
      * @param points    points for a match
      * @param tolerance fraction of pixels allowed to differ by more than 2/255
+     * @param variant   how the grader varies the scene per grading (null: graded as published);
+     *                  read and checked by the grader ({@code raylab.grade.VariantSpec})
      */
     public record GradedScene(@JsonProperty(required = true) String scene,
             @JsonProperty(required = true) String reference,
             int points,
-            double tolerance) {
+            double tolerance,
+            com.fasterxml.jackson.databind.JsonNode variant) {
+        /** A scene graded as published. */
+        public GradedScene(String scene, String reference, int points, double tolerance) {
+            this(scene, reference, points, tolerance, null);
+        }
     }
 }

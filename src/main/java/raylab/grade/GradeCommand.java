@@ -22,7 +22,7 @@ import raylab.course.TestLauncher;
 @Command(name = "grade", mixinStandardHelpOptions = true,
         description = {"Grade a student's submission milestone by milestone (instructors and autograders).",
             "SUBMISSION is a directory or a zip, in the release's layout or flat. Writes results.json (Gradescope),",
-            "classroom.json/.b64 (GitHub Classroom), junit.xml and report.html into --out, and prints a table.",
+            "junit.xml and report.html into --out (and PrairieLearn's results.json with --prairielearn), and prints a table.",
             "Details: grader/README.md."},
         exitCodeListHeading = "%nExit status:%n",
         exitCodeList = {"0:graded (whatever the score)", "1:the grader could not grade (results.json still written)",
@@ -67,6 +67,18 @@ public final class GradeCommand implements Callable<Integer> {
     @Option(names = "--quiet", description = "Print only the total score.")
     boolean quiet;
 
+    @Option(names = "--prairielearn", paramLabel = "FILE",
+            description = "Also write PrairieLearn's external-grading results.json to FILE (see grader/README.md).")
+    Path prairielearn;
+
+    @Option(names = "--after-due-date",
+            description = "With --prairielearn: include the hidden tests (a regrade after the due date).")
+    boolean afterDueDate;
+
+    @Option(names = "--seed", paramLabel = "N", description = {"Seed of the graded scenes' variants (default: drawn fresh;",
+        "the report names it, so that a regrade with --seed N grades the same variants)."})
+    Long seed;
+
     @Override
     public Integer call() throws IOException {
         if (!Files.isDirectory(submission) && !Files.isRegularFile(submission)) {
@@ -85,11 +97,20 @@ public final class GradeCommand implements Callable<Integer> {
                 .withSandboxUser(sandboxUser);
         o = new Grader.Options(o.root(), o.milestones(), o.limits(), o.sceneLimit(), heap, cache == null
                 ? o.cacheDir() : cache.toAbsolutePath(), o.sandboxUser(), o.parallel()).withSandboxMode(mode(sandbox));
-        return run(o, submission, out, s -> {
+        Path pl = prairielearn == null ? null : prairielearn.toAbsolutePath();
+        boolean after = afterDueDate;
+        return run(o, seed == null ? GradedScenes.freshSeed() : seed, submission, out, s -> {
             if (!quiet) {
                 System.err.println(s);
             }
-        }, quiet, stdout);
+        }, quiet, stdout, pl == null ? null : report -> {
+            try {
+                Files.createDirectories(pl.getParent());
+                Reports.write(pl, raylab.grade.platform.PrairieLearn.results(report, after));
+            } catch (IOException e) {
+                throw new java.io.UncheckedIOException(e);
+            }
+        });
     }
 
     private static Sandbox.Mode mode(String s) {
@@ -111,6 +132,15 @@ public final class GradeCommand implements Callable<Integer> {
      */
     static int run(Grader.Options o, Path submission, Path out, java.util.function.Consumer<String> log, boolean quiet,
             PrintStream stdout) {
+        return run(o, GradedScenes.freshSeed(), submission, out, log, quiet, stdout, null);
+    }
+
+    /**
+     * As above, with the seed of the graded scenes' variants; {@code also} writes a platform's
+     * file from the same report (after the others).
+     */
+    static int run(Grader.Options o, long seed, Path submission, Path out, java.util.function.Consumer<String> log,
+            boolean quiet, PrintStream stdout, java.util.function.Consumer<GradeReport> also) {
         long t0 = System.nanoTime();
         GradeReport report = null;
         int status = 0;
@@ -123,7 +153,7 @@ public final class GradeCommand implements Callable<Integer> {
                 System.err.println("raylab: " + oneLine(submission + ": no such file or directory"));
                 status = 2;
             } else {
-                report = new Grader(o, log).grade(submission);
+                report = new Grader(o, log).seed(seed).grade(submission);
             }
         } catch (Throwable e) {
             report = null;
@@ -144,6 +174,9 @@ public final class GradeCommand implements Callable<Integer> {
             if (!expected.equals(Files.readString(out.resolve("results.json"), StandardCharsets.UTF_8))) {
                 System.err.println("raylab: results.json changed after it was written; written again");
                 Reports.writeAll(report, out);
+            }
+            if (also != null && report != null) {
+                also.accept(report);
             }
             if (quiet) {
                 stdout.println(Reports.summary(report).lines().findFirst().orElse(""));

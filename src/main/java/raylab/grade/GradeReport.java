@@ -5,7 +5,7 @@ import java.util.List;
 /**
  * Everything one grading produced: per milestone its graded tests (unit tests, data cases and
  * scenes), and the files that were ignored. The report writers turn it into results.json,
- * classroom.json, junit.xml, report.html and the console table.
+ * junit.xml, report.html, PrairieLearn's results.json and the console table.
  *
  * @param milestones  graded milestones in course order
  * @param accepted    submitted files that were graded ("src/main/java/raylab/surface/Sphere.java <- Sphere.java")

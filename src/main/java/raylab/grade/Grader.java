@@ -97,6 +97,16 @@ public final class Grader {
         this.log = log;
     }
 
+    /** Graded scenes of this grading by scene path: the variants and their references (GradedScenes). */
+    private final Map<String, GradedScenes.Graded> graded = new java.util.concurrent.ConcurrentHashMap<>();
+    private long seed = GradedScenes.freshSeed();
+
+    /** The seed of the graded scenes' variants (default: drawn fresh). */
+    public Grader seed(long s) {
+        this.seed = s;
+        return this;
+    }
+
     /**
      * Grades a submission (directory or zip). Never throws for a bad submission: problems become
      * zero scores with explanations. Throws IOException only when the grader itself cannot work
@@ -117,6 +127,7 @@ public final class Grader {
                 throw new IOException("no milestone '" + m + "' (milestones: " + String.join(", ", all.ids()) + ")");
             }
         }
+        GradedScenes.validate(root, selected); // a bad variant spec stops the grading before anything runs
         List<String> notes = new ArrayList<>();
         Sandbox sandbox = Sandbox.detect(options.sandboxUser(), options.sandboxMode(), s -> {
             notes.add(s);
@@ -124,6 +135,8 @@ public final class Grader {
         });
         GraderSetup setup = GraderSetup.prepare(root, selected, options.cacheDir().toAbsolutePath(), log);
         notes.addAll(setup.notes);
+        // Mode none: children could write the cache; it is checked against this manifest at the end.
+        CacheManifest.Guard cacheGuard = sandbox.mode() == Sandbox.Mode.NONE ? CacheManifest.guard(setup.dir) : null;
         this.allAssignments = all.all();
         this.hiddenTexts = hiddenTexts(setup, all.all());
         // Every reference image is read before any student code runs.
@@ -131,6 +144,14 @@ public final class Grader {
             for (Assignment.GradedScene sc : a.scenes()) {
                 Path ref = referenceImage(sc);
                 references.put(sc.reference(), ref == null ? null : Files.readAllBytes(ref));
+            }
+        }
+        // Variants of the graded scenes, their references rendered here by the reference solution.
+        notes.add("scene variants: seed " + seed + " (grade with --seed " + seed + " to grade the same variants again)");
+        for (GradedScenes.Graded g : GradedScenes.forGrading(root, selected, seed)) {
+            graded.put(g.scene().scene(), g);
+            if (!g.note().isEmpty()) {
+                notes.add(g.note());
             }
         }
 
@@ -179,6 +200,9 @@ public final class Grader {
         } finally {
             pool.shutdownNow();
             GraderSetup.deleteTree(work);
+            if (cacheGuard != null) {
+                cacheGuard.check().ifPresent(notes::add);
+            }
         }
         return new GradeReport(List.copyOf(results.values()), accepted, ignored, notes,
                 (System.nanoTime() - t0) / 1e9);
@@ -681,7 +705,9 @@ public final class Grader {
         });
         Path scenes = box.run().resolve("scenes");
         copyScenes(scenesCopy, scenes);
-        List<String> cmd = new ArrayList<>(box.wrapper());
+        Duration limit = options.sceneLimit().multipliedBy(a.scenes().size());
+        // The sandbox stops the renders at the limit itself and still hands back the images made.
+        List<String> cmd = new ArrayList<>(box.wrapper(limit));
         cmd.addAll(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
                 "-Xmx" + options.sceneHeapMb() + "m", "-XX:+ExitOnOutOfMemoryError", "-Djava.awt.headless=true", "-XX:+DisableAttachMechanism",
                 "-XX:-UsePerfData", "--limit-modules", TestLauncher.CHILD_MODULES, "-cp",
@@ -691,12 +717,14 @@ public final class Grader {
             Assignment.GradedScene sc = a.scenes().get(i);
             Path scene = scenes.resolve(root.resolve("scenes").relativize(root.resolve(sc.scene())).toString());
             Path png = box.run().resolve("scene" + i + ".png");
+            if (graded.containsKey(sc.scene()) && graded.get(sc.scene()).varied()) {
+                Files.writeString(scene, graded.get(sc.scene()).json()); // the variant in place of the published scene
+            }
             cmd.add(box.inChild(scene));
             cmd.add(box.inChild(png));
             pngs.add(png);
         }
         long t0 = System.nanoTime();
-        Duration limit = options.sceneLimit().multipliedBy(a.scenes().size());
         boolean timedOut = false;
         List<byte[]> images = new ArrayList<>();
         List<String> errors = new ArrayList<>();
@@ -707,7 +735,8 @@ public final class Grader {
             p = pb.start();
             p.getOutputStream().close();
             try {
-                if (!p.waitFor(limit.toMillis(), java.util.concurrent.TimeUnit.MILLISECONDS)) {
+                if (!p.waitFor(limit.toMillis() + 5_000, java.util.concurrent.TimeUnit.MILLISECONDS)
+                        || p.exitValue() == Sandbox.DEADLINE_STATUS) {
                     timedOut = true;
                 }
             } catch (InterruptedException e) {
@@ -738,7 +767,8 @@ public final class Grader {
         for (int i = 0; i < a.scenes().size(); i++) {
             Assignment.GradedScene sc = a.scenes().get(i);
             String name = sc.scene();
-            byte[] refBytes = references.get(sc.reference());
+            GradedScenes.Graded g = graded.get(sc.scene());
+            byte[] refBytes = g != null && g.varied() ? g.reference() : references.get(sc.reference());
             byte[] mine = images.get(i);
             String errLine = errors.get(i) == null ? "" : errors.get(i);
             String msg;

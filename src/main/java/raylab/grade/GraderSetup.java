@@ -186,7 +186,7 @@ final class GraderSetup {
             s.references.put(a.id(), dir.resolve("ref").resolve(a.id()));
         }
         Path expectedFile = dir.resolve("expected.json");
-        if (Files.isRegularFile(expectedFile)) {
+        if (CacheManifest.usable(dir, log)) { // verified against its hash manifest, else deleted and rebuilt
             s.readExpected(expectedFile, milestones);
             return s;
         }
@@ -278,6 +278,7 @@ final class GraderSetup {
         }
         JSON.writerWithDefaultPrettyPrinter().writeValue(tmp.resolve("expected.json").toFile(), exp);
         deleteTree(work);
+        CacheManifest.write(tmp);
         // Files readable (children get hard links to them), the folder itself private: only the
         // grader can reach the cache; children get their own copies or links in their box.
         Sandbox.readableByAll(tmp);

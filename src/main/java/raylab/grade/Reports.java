@@ -7,7 +7,6 @@ import java.nio.file.Files;
 import java.nio.file.Path;
 import java.nio.file.StandardCopyOption;
 import java.util.ArrayList;
-import java.util.Base64;
 import java.util.LinkedHashMap;
 import java.util.List;
 import java.util.Locale;
@@ -20,16 +19,15 @@ import raylab.grade.GradeReport.Kind;
 
 /**
  * Writes a {@link GradeReport} in the formats course staff use: Gradescope's results.json,
- * the GitHub Classroom autograding runner result (classroom.json, and classroom.b64 for a
- * step output), JUnit XML, a self-contained HTML report, and a console table. Each file is
+ * JUnit XML, a self-contained HTML report, and a console table (PrairieLearn's results.json:
+ * {@link raylab.grade.platform.PrairieLearn}). Each file is
  * written to a temporary name and renamed, so a reader never sees half a file.
  */
 public final class Reports {
     private static final ObjectMapper JSON = new ObjectMapper().enable(SerializationFeature.INDENT_OUTPUT);
 
     /** Every output file name the grader writes into the output directory. */
-    public static final List<String> FILES = List.of("results.json", "classroom.json", "classroom.b64", "junit.xml",
-            "report.html");
+    public static final List<String> FILES = List.of("results.json", "junit.xml", "report.html");
 
     private Reports() {
     }
@@ -38,9 +36,6 @@ public final class Reports {
     public static void writeAll(GradeReport r, Path out) throws IOException {
         Files.createDirectories(out);
         write(out.resolve("results.json"), gradescope(r));
-        String classroom = classroom(r);
-        write(out.resolve("classroom.json"), classroom);
-        write(out.resolve("classroom.b64"), Base64.getEncoder().encodeToString(classroom.getBytes(StandardCharsets.UTF_8)));
         write(out.resolve("junit.xml"), junitXml(r));
         write(out.resolve("report.html"), html(r));
     }
@@ -144,37 +139,6 @@ public final class Reports {
                 j.put("output", out);
                 j.put("tags", List.of(m.id(), t.kind().label()));
                 j.put("visibility", t.visibility());
-                tests.add(j);
-            }
-        }
-        root.put("tests", tests);
-        return JSON.writeValueAsString(root);
-    }
-
-    /**
-     * The GitHub Classroom autograding runner result, as the classroom-resources runners emit it
-     * (base64-encoded in their {@code result} output) and autograding-grading-reporter reads it.
-     */
-    public static String classroom(GradeReport r) throws IOException {
-        Map<String, Object> root = new LinkedHashMap<>();
-        root.put("version", 1);
-        boolean allPassed = r.milestones().stream().allMatch(m -> m.tests().stream().allMatch(GradeReport.Test::passed));
-        root.put("status", r.milestones().isEmpty() ? "error" : allPassed ? "pass" : "fail");
-        root.put("max_score", r.maxScore());
-        List<Map<String, Object>> tests = new ArrayList<>();
-        for (GradeReport.Milestone m : r.milestones()) {
-            for (GradeReport.Test t : m.tests()) {
-                Map<String, Object> j = new LinkedHashMap<>();
-                j.put("name", m.id() + ": " + t.name());
-                j.put("status", t.passed() ? "pass" : "fail");
-                j.put("score", GradeReport.round(t.score()));
-                // Students see classroom.json in the Actions log at once: nothing of a test that is not visible.
-                j.put("message", !"visible".equals(t.visibility()) ? (t.passed() ? "" : "a hidden test failed")
-                        : t.message());
-                j.put("test_code", t.kind().label() + " test of milestone " + m.id());
-                j.put("filename", t.file());
-                j.put("line_no", 0);
-                j.put("execution_time", String.format(Locale.ROOT, "%.3fs", t.millis() / 1000.0));
                 tests.add(j);
             }
         }

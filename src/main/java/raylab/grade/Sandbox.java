@@ -43,19 +43,36 @@ import java.util.stream.Stream;
 final class Sandbox {
     /** The default name of the unprivileged user (created by the bundle's setup.sh and .ci/run). */
     static final String DEFAULT_USER = "raylab-student";
-    /** Largest file a child may write. */
-    static final long MAX_FILE_BYTES = 64L << 20;
-    /** Size of the child's private /tmp (namespace mode). */
-    static final String TMP_SIZE = "64m";
+    /** Largest file a child may write (RLIMIT_FSIZE). */
+    static final long MAX_FILE_BYTES = 16L << 20;
+    /** Size of each of the child's two private tmpfs (namespace mode): its run folder and /tmp. */
+    static final String SCRATCH_SIZE = "16m";
+    /** {@link #SCRATCH_SIZE} in bytes. */
+    static final long SCRATCH_BYTES = 16L << 20;
+    /** Threads and processes one child may have at once (cgroup {@code pids.max}; RLIMIT_NPROC with its own uid). */
+    static final int MAX_TASKS = 512;
+    /** Exit status of a child stopped by the deadline of {@link Box#wrapper(java.time.Duration)}. */
+    static final int DEADLINE_STATUS = 124;
 
     /** Isolation modes; AUTO picks the strongest available. */
     enum Mode {
         AUTO, NAMESPACE, USER, NONE
     }
 
+    /**
+     * Runs inside the new namespaces as their PID 1 (root of the namespace, before the child
+     * drops everything): builds the child's root, starts the child, and when it has ended kills
+     * whatever it left and copies the regular files it left at the top of its run folder back to
+     * the box's {@code run/} on the grader's side (at most {@link #SCRATCH_BYTES} in all: the
+     * tmpfs holds no more). The run folder and {@code /tmp} are two tmpfs of
+     * {@link #SCRATCH_SIZE} each, private to this child: nothing it writes reaches the grader's
+     * disk while it runs, and a full disk is its own. A deadline (seconds, 0 for none) kills the
+     * child from inside, so that what it wrote before is still copied back; the exit status is
+     * then {@link #DEADLINE_STATUS}.
+     */
     private static final String NS_SCRIPT = String.join("\n",
             "set -e",
-            "R=\"$1\"; BOX=\"$2\"; JH=\"$3\"; shift 3",
+            "R=\"$1\"; BOX=\"$2\"; JH=\"$3\"; U=\"$4\"; G=\"$5\"; D=\"$6\"; shift 6",
             "mount -t tmpfs -o size=1m,mode=755 raylab-root \"$R\"",
             "for d in /usr /bin /sbin /lib /lib32 /lib64 /libx32 /etc \"$JH\"; do",
             "  if [ ! -e \"$d\" ] && [ ! -L \"$d\" ]; then continue; fi",
@@ -63,13 +80,29 @@ final class Sandbox {
             "  if [ -L \"$d\" ]; then ln -s \"$(readlink \"$d\")\" \"$R$d\"; continue; fi",
             "  mkdir -p \"$R$d\"; mount --bind \"$d\" \"$R$d\"; mount -o remount,bind,ro,nosuid \"$R$d\"",
             "done",
-            "mkdir -p \"$R/dev\" \"$R/tmp\" \"$R/box\"",
+            "mkdir -p \"$R/dev\" \"$R/tmp\" \"$R/box/cp\" \"$R/box/run\"",
             "for n in null zero random urandom; do touch \"$R/dev/$n\"; mount --bind \"/dev/$n\" \"$R/dev/$n\"; done",
-            "mount -t tmpfs -o size=" + TMP_SIZE + ",mode=1777,nosuid,nodev,noexec raylab-tmp \"$R/tmp\"",
-            "mount --bind \"$BOX\" \"$R/box\"; mount -o remount,bind,nosuid,nodev,noexec \"$R/box\"",
+            "mount -t tmpfs -o size=" + SCRATCH_SIZE + ",mode=1777,nosuid,nodev,noexec raylab-tmp \"$R/tmp\"",
+            "mount -t tmpfs -o size=" + SCRATCH_SIZE + ",mode=700,uid=\"$U\",gid=\"$G\",nosuid,nodev,noexec raylab-run \"$R/box/run\"",
+            "cp -R \"$BOX/run/.\" \"$R/box/run/\"; chown -R \"$U:$G\" \"$R/box/run\"",
             "mount --bind \"$BOX/cp\" \"$R/box/cp\"; mount -o remount,bind,ro,nosuid,nodev,noexec \"$R/box/cp\"",
             "mount -o remount,bind,ro,nosuid,nodev \"$R\"",
-            "exec unshare --root=\"$R\" --wd=/box/run \"$@\"");
+            "set +e",
+            "exec 3<&0",
+            "unshare --root=\"$R\" --wd=/box/run \"$@\" 0<&3 3<&- &",
+            "c=$!",
+            "exec 3<&-",
+            "if [ \"$D\" -gt 0 ]; then (sleep \"$D\"; : > \"$R.deadline\"; kill -KILL \"$c\") </dev/null >/dev/null 2>&1 & fi",
+            "wait \"$c\"; rc=$?",
+            "kill -KILL -1 2>/dev/null; wait 2>/dev/null",
+            "for f in \"$R\"/box/run/*; do",
+            "  n=\"${f##*/}\"",
+            "  if [ -f \"$f\" ] && [ ! -L \"$f\" ] && [ ! -e \"$BOX/run/$n\" ] && [ ! -L \"$BOX/run/$n\" ]; then",
+            "    head -c " + SCRATCH_BYTES + " \"$f\" > \"$BOX/run/$n\"",
+            "  fi",
+            "done",
+            "if [ -e \"$R.deadline\" ]; then rc=" + DEADLINE_STATUS + "; fi",
+            "exit $rc");
 
     private final Mode mode;
     private final String user;
@@ -221,8 +254,13 @@ final class Sandbox {
      * @param run       its working directory on the grader's side
      * @param classPath the class path as the child sees it
      * @param marker    the random marker in the child's environment
+     * @param uid       the child's user id (its own, when the grader is root and a range is free), -1: the grader's
+     * @param gid       the child's group id, -1: the grader's
+     * @param slot      the lock that reserves {@code uid} for this box (null: no own uid)
+     * @param cgroup    the box's control groups (null: none could be made)
      */
-    record Box(Path dir, Path run, List<String> classPath, String marker, Sandbox sandbox) {
+    record Box(Path dir, Path run, List<String> classPath, String marker, Sandbox sandbox, int uid, int gid,
+            UidSlots.Slot slot, Cgroups.Group cgroup) {
         /** A path inside {@code cp/} or {@code run/} as the child sees it. */
         String inChild(Path hostPath) {
             return sandbox.mode == Mode.NAMESPACE ? "/box/" + dir.relativize(hostPath).toString().replace('\\', '/')
@@ -231,14 +269,31 @@ final class Sandbox {
 
         /** The command prefix that starts a program in this box. */
         List<String> wrapper() {
-            return sandbox.wrapper(this);
+            return sandbox.wrapper(this, null);
+        }
+
+        /**
+         * As {@link #wrapper()}, with a deadline enforced inside the sandbox (namespace mode): the
+         * child is killed when it is reached, what it wrote to its run folder is still copied
+         * back, and the exit status is {@link Sandbox#DEADLINE_STATUS}. Give the process a little
+         * longer than this on the grader's side.
+         */
+        List<String> wrapper(java.time.Duration deadline) {
+            return sandbox.wrapper(this, deadline);
+        }
+
+        /** Whether the child runs under an id no other child has (so it can be cleaned up by it). */
+        boolean ownUid() {
+            return slot != null;
         }
     }
 
     /**
      * Makes a box under {@code parent}: {@code cp/<i>} for each class path entry (directories
      * copied, files linked when the child cannot write them, else copied; {@code filter} chooses
-     * which files of a directory entry to take), and {@code run/}.
+     * which files of a directory entry to take), and {@code run/}. As root, the box reserves a
+     * user id of its own ({@link UidSlots}); where cgroups can be written it gets a control group
+     * with {@link #MAX_TASKS} tasks and a fair CPU share ({@link Cgroups}). {@link #finish} frees both.
      */
     Box box(Path parent, List<Path> classPath, java.util.function.BiPredicate<Path, String> filter) throws IOException {
         Path dir = Files.createTempDirectory(parent, "box");
@@ -285,7 +340,12 @@ final class Sandbox {
             }
             inside.add(mode == Mode.NAMESPACE ? "/box/cp/" + to.getFileName() : to.toString());
         }
-        Box b = new Box(dir, run, inside, HexFormat.of().formatHex(random(12)), this);
+        // Its own user id: as root with a sandbox user (namespace or user mode), from the free range.
+        UidSlots.Slot slot = user != null && root ? UidSlots.reserve() : null;
+        int childUid = slot != null ? slot.uid() : user != null ? uid : -1;
+        int childGid = slot != null ? slot.uid() : user != null ? gid : -1;
+        Cgroups.Group cg = Cgroups.create(dir.getFileName().toString(), MAX_TASKS);
+        Box b = new Box(dir, run, inside, HexFormat.of().formatHex(random(12)), this, childUid, childGid, slot, cg);
         prepare(b);
         return b;
     }
@@ -306,11 +366,11 @@ final class Sandbox {
                 }
             }
             Files.setPosixFilePermissions(b.dir(), PosixFilePermissions.fromString("rwxr-xr-x"));
-            if (user != null) {
+            if (b.uid() >= 0) {
                 try (Stream<Path> s = Files.walk(b.run())) {
                     for (Path p : (Iterable<Path>) s::iterator) {
-                        Files.setAttribute(p, "unix:uid", uid, java.nio.file.LinkOption.NOFOLLOW_LINKS);
-                        Files.setAttribute(p, "unix:gid", gid, java.nio.file.LinkOption.NOFOLLOW_LINKS);
+                        Files.setAttribute(p, "unix:uid", b.uid(), java.nio.file.LinkOption.NOFOLLOW_LINKS);
+                        Files.setAttribute(p, "unix:gid", b.gid(), java.nio.file.LinkOption.NOFOLLOW_LINKS);
                     }
                 }
             }
@@ -352,11 +412,14 @@ final class Sandbox {
         }
     }
 
-    private List<String> wrapper(Box b) {
+    private List<String> wrapper(Box b, java.time.Duration deadline) {
         List<String> cmd = new ArrayList<>();
+        if (b.cgroup() != null) {
+            cmd.addAll(b.cgroup().joinCommand());
+        }
         if (prlimit != null) {
             cmd.addAll(List.of(prlimit.toString(), "--fsize=" + MAX_FILE_BYTES, "--core=0"));
-            int nproc = processLimit();
+            int nproc = processLimit(b);
             if (nproc > 0) {
                 cmd.add("--nproc=" + nproc);
             }
@@ -367,12 +430,14 @@ final class Sandbox {
             if (!root) {
                 cmd.addAll(List.of("--user", "--map-root-user"));
             }
+            long seconds = deadline == null ? 0 : Math.max(1, deadline.toSeconds());
             cmd.addAll(List.of("--net", "--mount", "--pid", "--ipc", "--uts", "--fork", "--kill-child", "--", "sh", "-c",
                     NS_SCRIPT, "raylab-sandbox", b.dir().resolveSibling(b.dir().getFileName() + "-root").toString(),
-                    b.dir().toString(), javaHome()));
+                    b.dir().toString(), javaHome(), Integer.toString(Math.max(0, b.uid())),
+                    Integer.toString(Math.max(0, b.gid())), Long.toString(seconds)));
             cmd.add(setpriv.toString());
-            if (user != null) {
-                cmd.addAll(List.of("--reuid=" + uid, "--regid=" + gid, "--clear-groups"));
+            if (b.uid() >= 0) {
+                cmd.addAll(List.of("--reuid=" + b.uid(), "--regid=" + b.gid(), "--clear-groups"));
             }
             cmd.addAll(List.of("--bounding-set=-all", "--inh-caps=-all", "--no-new-privs", "--",
                     "/usr/bin/env", "-i", "PATH=/usr/bin:/bin", "HOME=/box/run", "TMPDIR=/tmp", "LANG=C.UTF-8",
@@ -383,7 +448,7 @@ final class Sandbox {
             cmd.add(setsid.toString());
         }
         if (mode == Mode.USER) {
-            cmd.addAll(List.of(setpriv.toString(), "--reuid=" + uid, "--regid=" + gid, "--clear-groups",
+            cmd.addAll(List.of(setpriv.toString(), "--reuid=" + b.uid(), "--regid=" + b.gid(), "--clear-groups",
                     "--no-new-privs", "--"));
         }
         cmd.addAll(List.of("/usr/bin/env", "-i", "PATH=/usr/bin:/bin", "HOME=" + b.run(), "TMPDIR=" + b.run().resolve("tmp"),
@@ -391,13 +456,19 @@ final class Sandbox {
         return cmd;
     }
 
-    /** RLIMIT_NPROC counts every process of the real user: the child's share on top of what runs now. */
-    private int processLimit() {
-        int childUid = user != null ? uid : root ? 0 : currentUid();
+    /**
+     * RLIMIT_NPROC counts every process of the real user: with a user id of its own the child
+     * gets {@link #MAX_TASKS}; with a shared one its share on top of what runs now.
+     */
+    private int processLimit(Box b) {
+        if (b.ownUid()) {
+            return MAX_TASKS;
+        }
+        int childUid = b.uid() >= 0 ? b.uid() : root ? 0 : currentUid();
         if (childUid == 0 || childUid < 0) {
             return 0; // root is exempt from RLIMIT_NPROC
         }
-        return countThreadsOf(childUid) + 512;
+        return countThreadsOf(childUid) + MAX_TASKS;
     }
 
     private static int currentUid() {
@@ -464,6 +535,9 @@ final class Sandbox {
         }
         for (int round = 0; round < 3; round++) {
             List<ProcessHandle> left = leftovers(b);
+            if (b.cgroup() != null) {
+                b.cgroup().members().forEach(pid -> ProcessHandle.of(pid).ifPresent(left::add));
+            }
             if (left.isEmpty()) {
                 break;
             }
@@ -475,8 +549,25 @@ final class Sandbox {
                 break;
             }
         }
+        if (b.cgroup() != null) {
+            b.cgroup().remove();
+        }
+        if (b.ownUid()) {
+            // Whatever the child left in the shared writable places (user mode; in namespace mode
+            // it never saw them).
+            if (mode != Mode.NAMESPACE) {
+                UidSlots.removeFilesOf(b.uid());
+            }
+            b.slot().release();
+        }
         GraderSetup.deleteTree(b.dir());
-        GraderSetup.deleteTree(b.dir().resolveSibling(b.dir().getFileName() + "-root"));
+        Path rootDir = b.dir().resolveSibling(b.dir().getFileName() + "-root");
+        GraderSetup.deleteTree(rootDir);
+        try {
+            Files.deleteIfExists(Path.of(rootDir + ".deadline"));
+        } catch (IOException e) {
+            // best effort
+        }
     }
 
     /** Processes that belong to this box (marker in the environment, or command line or folder in it). */
@@ -492,8 +583,11 @@ final class Sandbox {
                     continue;
                 }
                 try {
-                    boolean mine = new String(Files.readAllBytes(p.resolve("environ")), StandardCharsets.ISO_8859_1)
-                            .contains(marker);
+                    boolean mine = b.ownUid() && Integer.valueOf(b.uid()).equals(Files.getAttribute(p, "unix:uid"));
+                    if (!mine) {
+                        mine = new String(Files.readAllBytes(p.resolve("environ")), StandardCharsets.ISO_8859_1)
+                                .contains(marker);
+                    }
                     if (!mine) {
                         mine = new String(Files.readAllBytes(p.resolve("cmdline")), StandardCharsets.ISO_8859_1)
                                 .contains(dir);

@@ -79,6 +79,9 @@ public class Triangle extends Surface {
         double b1 = e1 / det;
         double b2 = e2 / det;
         double t = b0 * aRay[2] + b1 * bRay[2] + b2 * cRay[2];
+        if (t < 0 && -t <= zeroBound(aRay, bRay, cRay, e0, e1, e2, det, sz)) {
+            t = 0; // p lies in the plane up to rounding: the hit at t = 0 counts (docs/shading.md)
+        }
         if (!ray.inRange(t) || t >= outRecord.t) {
             return false;
         }
@@ -93,12 +96,6 @@ public class Triangle extends Surface {
     }
 
     // BEGIN SOLUTION triangle
-    /**
-     * Marks the reference solution: Mesh's packed kernel repeats it operation for operation, so
-     * meshes use that kernel only while this marker is here (docs/mesh-engine.md).
-     */
-    static final boolean REFERENCE_KERNEL = true;
-
     private static int largestAxis(Vec3 d) {
         double x = Math.abs(d.x);
         double y = Math.abs(d.y);
@@ -114,6 +111,31 @@ public class Triangle extends Surface {
         double z = v.get(kz) - p.get(kz);
         return new double[] {x + sx * z, y + sy * z, sz * z};
     }
+
+    /**
+     * A bound on |t| when the exact t is 0 (p in the triangle's plane): the rounding error of t
+     * (pbrt-v4's conservative t, Pharr, Jakob and Humphreys 2023, §6.8.7, with the sheared x and
+     * y's error taken from the unscaled z, and doubled). With ε = 2⁻⁵³ and γₙ = nε/(1 − nε):
+     * δx = γ₅(max|x| + max|z|), δe = 2(γ₂ max|x| max|y| + δy max|x| + δx max|y|),
+     * δt = 6(γ₃ max|e| max|sz·z| + δe max|sz·z| + γ₃ max|sz·z| max|e|) / |det|.
+     */
+    private static double zeroBound(double[] a, double[] b, double[] c, double e0, double e1,
+            double e2, double det, double sz) {
+        double x = Math.max(Math.max(Math.abs(a[0]), Math.abs(b[0])), Math.abs(c[0]));
+        double y = Math.max(Math.max(Math.abs(a[1]), Math.abs(b[1])), Math.abs(c[1]));
+        double zs = Math.max(Math.max(Math.abs(a[2]), Math.abs(b[2])), Math.abs(c[2]));
+        double z = zs / Math.abs(sz); // the unscaled z, up to rounding
+        double e = Math.max(Math.max(Math.abs(e0), Math.abs(e1)), Math.abs(e2));
+        double dx = GAMMA5 * (x + z);
+        double dy = GAMMA5 * (y + z);
+        double de = 2 * (GAMMA2 * x * y + dy * x + dx * y);
+        return 6 * (GAMMA3 * e * zs + de * zs + GAMMA3 * zs * e) / Math.abs(det);
+    }
+
+    private static final double EPS = 0x1p-53;
+    private static final double GAMMA2 = 2 * EPS / (1 - 2 * EPS);
+    private static final double GAMMA3 = 3 * EPS / (1 - 3 * EPS);
+    private static final double GAMMA5 = 5 * EPS / (1 - 5 * EPS);
 
     /** a·b − c·d accurate to 2 ulps (Kahan's algorithm): the FMA recovers c·d's rounding error. */
     private static double differenceOfProducts(double a, double b, double c, double d) {

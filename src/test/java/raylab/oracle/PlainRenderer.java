@@ -152,7 +152,9 @@ final class PlainRenderer {
             }
         }
         for (Root h : all) {
-            if (Math.abs(h.t) * dLen < delta) {
+            // A root at exactly t = 0 (the eye on the surface in this renderer's own arithmetic) is
+            // a hit by the rule (docs/shading.md), not a decision rounding could tip.
+            if (Math.abs(h.t) * dLen < delta && !(h.t == 0 && !h.fragile && !h.phantom)) {
                 fragile = true; // the eye ray starts on a surface
                 note(tr, "fragile: eye ray starts within δ of " + h.prim.name);
             }

@@ -27,8 +27,9 @@ import raylab.render.PngFiles;
  * verification run student code: a student's {@code Triangle.java} compiled as an overlay over the
  * reference classes, and the triangle milestone's mesh scene rendered in a child JVM.
  * <ul>
- * <li>a student file with the reference's code (but not its marker) is traced through
- * {@code Triangle.intersect} and gives the reference image bit for bit;</li>
+ * <li>a student file with the reference's code, word for word, is traced through
+ * {@code Triangle.intersect} (its class comes from the overlay, not from the code source of
+ * {@code Mesh} and the packed engine) and gives the reference image bit for bit;</li>
  * <li>the same file with a typical bug (the third edge test dropped) gives another image: the bug
  * shows in the mesh;</li>
  * <li>the starter's stub stops the render with exit status 3, naming the milestone.</li>
@@ -38,13 +39,6 @@ class StudentMeshPathTest {
     static final Path TRIANGLE = Path.of("src/main/java/raylab/surface/Triangle.java");
     static final Path SCENE = Path.of("scenes/mesh.json");
     static final Path REFERENCE = Path.of("scenes/reference/mesh.png");
-
-    /** The reference solution as a student could have written it: without the marker. */
-    static String withoutMarker(String reference) {
-        String marker = "    static final boolean REFERENCE_KERNEL = true;\n";
-        assertTrue(reference.contains(marker), "the marker is in Triangle.java");
-        return reference.replace(marker, "");
-    }
 
     static BufferedImage render(String triangleSource, Path dir, String name, int[] exit, String[] message)
             throws Exception {
@@ -80,7 +74,7 @@ class StudentMeshPathTest {
         int[] exit = new int[1];
         String[] message = new String[1];
 
-        String asStudent = withoutMarker(SolutionRegions.toStudent("Triangle.java", reference, Set.of("triangle")));
+        String asStudent = SolutionRegions.toStudent("Triangle.java", reference, Set.of("triangle"));
         BufferedImage same = render(asStudent, dir, "correct", exit, message);
         assertEquals(0, exit[0], "correct student file renders: " + message[0]);
         assertEquals(0, differentPixels(expected, same),
@@ -97,19 +91,46 @@ class StudentMeshPathTest {
         assertFalse(cmp.matches(0.005), "the grader's tolerance must catch the broken triangle: " + cmp.summary());
 
         String stub = SolutionRegions.toStudent("Triangle.java", reference, Set.of());
-        assertFalse(stub.contains("REFERENCE_KERNEL"), "the starter has no marker");
         assertEquals(null, render(stub, dir, "stub", exit, message));
         assertEquals(3, exit[0], "the stub stops the mesh render: " + message[0]);
         assertTrue(message[0].contains("triangle"), "the message names the milestone: " + message[0]);
     }
 
     @Test
-    void theStarterHasNoMarkerAndTheReferenceHasIt() throws Exception {
+    void theReferenceBuildUsesThePackedEngine() {
+        assertTrue(Mesh.PACKED_ENGINE, "reference build: Triangle, Mesh and PackedTriangles share one code source");
+        assertTrue(Mesh.sameOrigin(Triangle.class, PackedTriangles.class), "same class folder");
+    }
+
+    @Test
+    void aStudentTriangleCannotClaimThePackedEngine(@TempDir Path dir) throws Exception {
+        // A Triangle that declares what the former marker was, and more: still its own kernel.
         String reference = Files.readString(TRIANGLE, StandardCharsets.UTF_8);
-        assertTrue(Mesh.REFERENCE_TRIANGLE, "reference build: meshes use the packed kernel");
-        for (String milestone : List.of("sphere", "box", "lambert")) {
-            assertFalse(SolutionRegions.toStudent("Triangle.java", reference, Set.of(milestone)).contains("REFERENCE_KERNEL"),
-                    "starter (with " + milestone + " solved)");
+        String forged = SolutionRegions.toStudent("Triangle.java", reference, Set.of("triangle")).replace(
+                "    @Override\n    public BoundingBox boundingBox()",
+                "    static final boolean REFERENCE_KERNEL = true;\n    static final boolean PACKED_ENGINE = true;\n\n"
+                        + "    @Override\n    public BoundingBox boundingBox()");
+        assertTrue(forged.contains("REFERENCE_KERNEL"), "the forged marker is in the file");
+        Path src = dir.resolve("forged-src");
+        Path out = dir.resolve("forged-classes");
+        JavaBuild.Result built = MilestoneBuild.compileOverlay(Map.of("raylab/surface/Triangle.java", forged), src,
+                JavaBuild.ownClassPath(), out);
+        assertTrue(built.success(), "compiles: " + built.errors());
+        ProcessBuilder pb = new ProcessBuilder(Path.of(System.getProperty("java.home"), "bin", "java").toString(), "-cp",
+                MilestoneBuild.classPath(out).stream().map(Path::toString)
+                        .collect(java.util.stream.Collectors.joining(java.io.File.pathSeparator)),
+                ProbeMain.class.getName());
+        pb.redirectErrorStream(true);
+        Process p = pb.start();
+        String output = new String(p.getInputStream().readAllBytes(), StandardCharsets.UTF_8).trim();
+        assertEquals(0, p.waitFor(), "probe ran: " + output);
+        assertEquals("packed=false", output, "a Triangle from the overlay selects the student kernel");
+    }
+
+    /** Run in a child JVM: which kernel a mesh of this class path's Triangle objects uses. */
+    public static final class ProbeMain {
+        public static void main(String[] args) {
+            System.out.println("packed=" + Mesh.PACKED_ENGINE);
         }
     }
 }

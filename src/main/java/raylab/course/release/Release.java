@@ -191,7 +191,7 @@ public final class Release {
 
     /**
      * An assignment.json without what the grader keeps private, written in one fixed layout: the
-     * tests.hidden list goes, and the data-driven cases go with their points counted as hidden
+     * tests.hidden list and the scenes' variant specs go, and the data-driven cases go with their points counted as hidden
      * points (the case files are grader data and are not shipped).
      */
     static byte[] withoutHiddenTests(String rel, byte[] bytes, double casePoints) throws IOException {
@@ -220,6 +220,12 @@ public final class Release {
             }
         }
         obj.remove("cases");
+        // How the grader varies the graded scenes is grader data too.
+        for (JsonNode sc : obj.path("scenes")) {
+            if (sc instanceof ObjectNode o) {
+                o.remove("variant");
+            }
+        }
         if (!visibleCaseFiles.isEmpty()) {
             com.fasterxml.jackson.databind.node.ArrayNode c = obj.putArray("cases");
             visibleCaseFiles.forEach(c::add);

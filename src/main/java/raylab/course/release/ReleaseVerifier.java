@@ -43,6 +43,7 @@ import raylab.render.PngFiles;
  * <li>contents: no solution text or marker, nothing instructor-only or hidden, descriptions
  * readable;</li>
  * <li>the starter's main code and visible tests compile (against the libraries only);</li>
+ * <li>no reference method body is anywhere in the starter, under any name ({@link SolutionLeaks});</li>
  * <li>on the stubs every milestone's visible tests fail with "not implemented yet"; with only the
  * milestones it requires put back they still fail, naming the milestone;</li>
  * <li>with the milestone's solution (and those it requires) put back its tests pass, while the
@@ -129,6 +130,7 @@ public final class ReleaseVerifier {
             List<Check> compiled = compile();
             checks.addAll(compiled);
             if (compiled.stream().allMatch(Check::passed)) {
+                checks.add(noSolutionLeak());
                 checks.add(discover());
                 if (checks.get(checks.size() - 1).passed()) {
                     List<Future<List<Check>>> jobs = new ArrayList<>();
@@ -345,6 +347,18 @@ public final class ReleaseVerifier {
         JavaBuild.Result t = JavaBuild.compile(testSources, cp(mainClasses), testClasses);
         out.add(compiled("the starter's visible tests compile", t, testSources.size()));
         return out;
+    }
+
+    /** No reference method body anywhere in the starter, by bytecode or by source ({@link SolutionLeaks}). */
+    private Check noSolutionLeak() {
+        String name = "no reference method body in the starter (normalized bytecode and source tokens)";
+        try {
+            List<SolutionLeaks.Leak> leaks = SolutionLeaks.find(root, starter, assignments, mainClasses,
+                    List.of(mainClasses, testClasses), libraries, work.resolve("leaks"));
+            return Check.of(name, leaks.stream().map(Object::toString).toList(), "");
+        } catch (IOException | RuntimeException e) {
+            return new Check(name, false, "could not check: " + firstLine(e.getMessage()));
+        }
     }
 
     private Check compiled(String name, JavaBuild.Result r, int files) {

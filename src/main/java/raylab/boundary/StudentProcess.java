@@ -1,0 +1,749 @@
+package raylab.boundary;
+
+import java.io.BufferedInputStream;
+import java.io.BufferedOutputStream;
+import java.io.ByteArrayOutputStream;
+import java.io.DataInputStream;
+import java.io.EOFException;
+import java.io.File;
+import java.io.IOException;
+import java.io.InputStream;
+import java.io.OutputStream;
+import java.lang.reflect.Constructor;
+import java.lang.reflect.Field;
+import java.lang.reflect.Method;
+import java.lang.reflect.Parameter;
+import java.nio.charset.StandardCharsets;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.util.ArrayList;
+import java.util.HashMap;
+import java.util.IdentityHashMap;
+import java.util.List;
+import java.util.Map;
+import java.util.Set;
+import java.util.function.Consumer;
+
+import raylab.light.PointLight;
+import raylab.material.Material;
+import raylab.math.Color;
+import raylab.math.Vec3;
+import raylab.ray.IntersectionRecord;
+import raylab.ray.Ray;
+import raylab.remote.Wire;
+import raylab.shading.ShadingPoint;
+import raylab.surface.Surface;
+
+/**
+ * The grader's end of the process boundary: starts the student process (a
+ * {@link raylab.remote.StudentServer} behind the sandbox's command), calls the student's methods
+ * in it and answers its callbacks. Each call has a CPU-time budget measured on the student
+ * process (its own and its descendants' user and system time from {@code /proc/PID/stat}); a
+ * call over it, or a crash, stops the process, the call fails with a {@link StudentTimeout} or a
+ * {@link StudentException}, and the next call starts a fresh process, at most
+ * {@code maxRestarts} times.
+ */
+public final class StudentProcess implements AutoCloseable {
+    /** How the student process is started: its command line, and which classes it serves. */
+    public record Config(List<String> command, Path directory, Set<String> served, long callBudgetMillis,
+            int maxRestarts) {
+    }
+
+    private final Config config;
+    private Consumer<String> output = System.out::print;
+    private Process proc;
+    private DataInputStream in;
+    private OutputStream out;
+    private Path stderr;
+    private int starts;
+    private final Map<Object, Integer> handleOf = new IdentityHashMap<>();
+    private final Map<Integer, Object> byHandle = new HashMap<>();
+    private int nextHandle = 1;
+    private final Map<String, Integer> methodIds = new HashMap<>();
+    private final Map<Object, Integer> ephemeralOf = new IdentityHashMap<>();
+    private final List<Object> ephemeral = new ArrayList<>();
+    private int depth;
+    private int nextConv = 1;
+    private final Refs refs = new Refs();
+    private final Wire.Out buf = new Wire.Out();
+    private RuntimeException pendingFailure;
+    // The watchdog's view of the current outermost call.
+    private volatile long callStartCpu = -1;
+    private volatile long callStartWall;
+    private volatile boolean timedOut;
+    private final Thread watchdog;
+    private volatile boolean closed;
+    private long calls;
+
+    public StudentProcess(Config config) {
+        this.config = config;
+        watchdog = new Thread(this::watch, "student-process-watchdog");
+        watchdog.setDaemon(true);
+        watchdog.start();
+    }
+
+    /** Where the student's captured output goes (default: this JVM's standard output). */
+    public void output(Consumer<String> sink) {
+        this.output = sink;
+    }
+
+    /** How many calls were made (batched calls counted one by one). */
+    public synchronized long calls() {
+        return calls;
+    }
+
+    /** How often a student process was started. */
+    public synchronized int starts() {
+        return starts;
+    }
+
+    private void watch() {
+        while (!closed) {
+            try {
+                Thread.sleep(20);
+            } catch (InterruptedException e) {
+                return;
+            }
+            long start = callStartCpu;
+            Process p = proc;
+            if (start < 0 || p == null) {
+                continue;
+            }
+            long used = cpuNanos(p) - start;
+            long wall = System.nanoTime() - callStartWall;
+            long budget = config.callBudgetMillis() * 1_000_000L;
+            // Wall time too, more generously: a student process that sleeps uses no CPU.
+            if (used > budget || wall > 3 * budget + 5_000_000_000L) {
+                timedOut = true;
+                kill(p);
+            }
+        }
+    }
+
+    private static void kill(Process p) {
+        p.descendants().forEach(ProcessHandle::destroyForcibly);
+        p.destroyForcibly();
+    }
+
+    /** CPU time (user + system) of the process and its descendants, from /proc; 0 where unknown. */
+    public static long cpuNanos(Process p) {
+        long ticks = ticks(p.pid());
+        for (ProcessHandle d : (Iterable<ProcessHandle>) p.descendants()::iterator) {
+            ticks += ticks(d.pid());
+        }
+        return ticks * 10_000_000L; // USER_HZ is 100 on Linux
+    }
+
+    private static long ticks(long pid) {
+        try {
+            String s = Files.readString(Path.of("/proc", Long.toString(pid), "stat"));
+            String[] f = s.substring(s.lastIndexOf(')') + 2).split(" ");
+            return Long.parseLong(f[11]) + Long.parseLong(f[12]);
+        } catch (IOException | RuntimeException e) {
+            return 0;
+        }
+    }
+
+    private void start() throws IOException {
+        if (starts > config.maxRestarts()) {
+            throw new StudentTimeout("your code was stopped " + starts + " times (too slow, or it crashed), so"
+                    + " the grader does not run it again in this milestone");
+        }
+        starts++;
+        handleOf.clear();
+        byHandle.clear();
+        methodIds.clear();
+        stderr = Files.createTempFile("student", ".err");
+        ProcessBuilder pb = new ProcessBuilder(config.command()).redirectError(stderr.toFile());
+        if (config.directory() != null) {
+            pb.directory(config.directory().toFile());
+        }
+        proc = pb.start();
+        InputStream raw = proc.getInputStream();
+        in = new DataInputStream(new BufferedInputStream(raw, 1 << 16));
+        out = new BufferedOutputStream(proc.getOutputStream(), 1 << 16);
+        // The HELLO line: anything else means the JVM did not start as a student server.
+        ByteArrayOutputStream line = new ByteArrayOutputStream();
+        callStartCpu = 0;
+        callStartWall = System.nanoTime();
+        timedOut = false;
+        try {
+            for (int b; (b = in.read()) != '\n';) {
+                if (b < 0 || line.size() > 200) {
+                    String why = firstLine(stderr);
+                    dead();
+                    throw new StudentException("java.lang.Error", "the student process did not start"
+                            + (why.isEmpty() ? "" : ": " + why), List.of(), "");
+                }
+                line.write(b);
+            }
+        } finally {
+            callStartCpu = -1;
+        }
+        if (!line.toString(StandardCharsets.US_ASCII).equals(Wire.HELLO)) {
+            dead();
+            throw new StudentException("java.lang.Error", "the student process did not start", List.of(), "");
+        }
+    }
+
+    private static String firstLine(Path f) {
+        try {
+            String s = Files.readString(f);
+            int nl = s.indexOf('\n');
+            return (nl < 0 ? s : s.substring(0, nl)).strip();
+        } catch (IOException e) {
+            return "";
+        }
+    }
+
+    private void dead() {
+        Process p = proc;
+        proc = null;
+        if (p != null) {
+            kill(p);
+            try {
+                p.waitFor();
+            } catch (InterruptedException e) {
+                Thread.currentThread().interrupt();
+            }
+        }
+        if (stderr != null) {
+            try {
+                Files.deleteIfExists(stderr);
+            } catch (IOException e) {
+                // a temporary file
+            }
+        }
+    }
+
+    /** Calls the student's {@code cls.name} on {@code target} (null: static) and returns its result. */
+    public synchronized Object call(String cls, String name, Object target, Object... args) {
+        return run(() -> {
+            int m = method(cls, name, args.length);
+            buf.reset();
+            buf.writeInt(m);
+            Wire.writeValue(buf, target, refs);
+            buf.writeInt(args.length);
+            for (Object a : args) {
+                Wire.writeValue(buf, a, refs);
+            }
+            int conv = nextConv++;
+            Wire.writeFrame(out, Wire.CALL, conv, buf);
+            out.flush();
+            calls++;
+            Wire.Frame f = await(conv, Wire.RETURN);
+            Object v = Wire.readValue(f.in(), refs);
+            copyRecords(f.in(), args);
+            output(f.in().readString());
+            return v;
+        });
+    }
+
+    /**
+     * Calls {@code cls.name} on {@code target} once per argument list, in one frame each way.
+     * An exception of call i is thrown with {@link StudentException#index} i... see {@link BatchFailure}.
+     */
+    public synchronized List<Object> batch(String cls, String name, Object target, List<Object[]> argLists) {
+        return run(() -> {
+            int m = method(cls, name, argLists.isEmpty() ? 0 : argLists.get(0).length);
+            buf.reset();
+            buf.writeInt(m);
+            Wire.writeValue(buf, target, refs);
+            buf.writeInt(argLists.size());
+            for (Object[] args : argLists) {
+                buf.writeInt(args.length);
+                for (Object a : args) {
+                    Wire.writeValue(buf, a, refs);
+                }
+            }
+            int conv = nextConv++;
+            Wire.writeFrame(out, Wire.BATCH, conv, buf);
+            out.flush();
+            calls += argLists.size();
+            Wire.Frame f = await(conv, Wire.BATCH_RETURN);
+            int n = f.in().readInt();
+            if (n != argLists.size()) {
+                throw new Wire.ProtocolException("batch answered " + n + " of " + argLists.size() + " calls");
+            }
+            List<Object> results = new ArrayList<>(n);
+            for (Object[] args : argLists) {
+                results.add(Wire.readValue(f.in(), refs));
+                copyRecords(f.in(), args);
+            }
+            output(f.in().readString());
+            return results;
+        });
+    }
+
+    private void output(String s) {
+        if (s != null && !s.isEmpty()) {
+            output.accept(s);
+        }
+    }
+
+    private void copyRecords(Wire.In in, Object[] args) throws IOException {
+        for (Object a : args) {
+            if (a instanceof IntersectionRecord r) {
+                Wire.readRecordInto(in, r, refs);
+            }
+        }
+    }
+
+    private interface Body<T> {
+        T run() throws IOException;
+    }
+
+    private <T> T run(Body<T> body) {
+        boolean outer = depth == 0;
+        try {
+            if (proc == null) {
+                start();
+            }
+            if (outer) {
+                timedOut = false;
+                callStartWall = System.nanoTime();
+                callStartCpu = cpuNanos(proc);
+            }
+            depth++;
+            try {
+                return body.run();
+            } finally {
+                depth--;
+            }
+        } catch (IOException e) {
+            boolean slow = timedOut;
+            String why = firstLine(stderr);
+            dead();
+            if (slow) {
+                throw new StudentTimeout("your code took longer than " + config.callBudgetMillis() / 1000.0
+                        + " s of CPU time for one call and was stopped (an endless loop?)");
+            }
+            if (e instanceof Wire.ProtocolException) {
+                throw new StudentException("java.lang.Error", "the student process broke the protocol ("
+                        + e.getMessage() + ") and was stopped", List.of(), "");
+            }
+            throw new StudentException("java.lang.Error", "the student process ended during the call"
+                    + (why.isEmpty() ? " (System.exit, running out of memory or a crash)" : ": " + why), List.of(), "");
+        } finally {
+            if (outer) {
+                callStartCpu = -1;
+                ephemeral.clear();
+                ephemeralOf.clear();
+                pendingFailure = null;
+            }
+        }
+    }
+
+    private int method(String cls, String name, int arity) throws IOException {
+        String key = cls + "#" + name + "#" + arity;
+        Integer id = methodIds.get(key);
+        if (id != null) {
+            return id;
+        }
+        int m = methodIds.size() + 1;
+        Wire.Out o = new Wire.Out();
+        o.writeInt(m);
+        o.writeString(cls);
+        o.writeString(name);
+        o.writeInt(arity);
+        int conv = nextConv++;
+        Wire.writeFrame(out, Wire.METHOD, conv, o);
+        out.flush();
+        await(conv, Wire.ACK);
+        methodIds.put(key, m);
+        return m;
+    }
+
+    /** Reads frames until the reply {@code type} to {@code conv}, answering callbacks meanwhile. */
+    private Wire.Frame await(int conv, byte type) throws IOException {
+        while (true) {
+            Wire.Frame f = Wire.readFrame(in);
+            if (f.type() == Wire.CALLBACK) {
+                callback(f);
+                continue;
+            }
+            if (f.conv() != conv) {
+                throw new Wire.ProtocolException("a reply to " + f.conv() + " while waiting for " + conv);
+            }
+            if (f.type() == type) {
+                return f;
+            }
+            if (f.type() == Wire.THROW) {
+                throw thrown(f.in());
+            }
+            throw new Wire.ProtocolException("unexpected frame type " + f.type());
+        }
+    }
+
+    /** A student exception of call {@code index} of a batch (−1: not a batch). */
+    public static final class BatchFailure extends StudentException {
+        private static final long serialVersionUID = 1L;
+        private final int index;
+
+        BatchFailure(int index, String cls, String msg, List<String> frames) {
+            super(cls, msg, frames, "");
+            this.index = index;
+        }
+
+        public int index() {
+            return index;
+        }
+    }
+
+    private RuntimeException thrown(Wire.In in) throws IOException {
+        int index = in.readInt();
+        String cls = in.readString();
+        String msg = in.readString();
+        int n = in.readInt();
+        if (n < 0 || n > 100) {
+            throw new Wire.ProtocolException("bad frame count");
+        }
+        List<String> frames = new ArrayList<>();
+        for (int i = 0; i < n; i++) {
+            frames.add(in.readString());
+        }
+        output(in.readString());
+        if (pendingFailure != null && cls.equals("raylab.remote.StudentServer$GraderFailure")) {
+            RuntimeException p = pendingFailure;
+            pendingFailure = null;
+            return p;
+        }
+        if ("raylab.course.NotImplemented".equals(cls)) {
+            // The untouched stub: the framework's own exception, so messages say "TODO".
+            return NotImplementedAgain.of(msg);
+        }
+        return index >= 0 ? new BatchFailure(index, cls, msg, frames) : new StudentException(cls, msg, frames, "");
+    }
+
+    private void callback(Wire.Frame f) throws IOException {
+        Wire.In in = f.in();
+        int id = in.readInt();
+        byte op = in.readByte();
+        int n = in.readInt();
+        if (n < 0 || n > 8) {
+            throw new Wire.ProtocolException("bad callback argument count");
+        }
+        Object[] a = new Object[n];
+        for (int i = 0; i < n; i++) {
+            a[i] = Wire.readValue(in, refs);
+        }
+        Object target = id > 0 && id <= ephemeral.size() ? ephemeral.get(id - 1) : null;
+        Object result;
+        try {
+            result = answer(target, op, a);
+        } catch (StudentTimeout e) {
+            throw e; // the process is gone
+        } catch (RuntimeException | Error e) {
+            if (e instanceof StudentException s) {
+                pendingFailure = s;
+            }
+            Wire.Out o = new Wire.Out();
+            o.writeString(e.getMessage());
+            Wire.writeFrame(out, Wire.CB_THROW, f.conv(), o);
+            out.flush();
+            return;
+        }
+        Wire.Out o = new Wire.Out();
+        Wire.writeValue(o, result, refs);
+        for (Object x : a) {
+            if (x instanceof IntersectionRecord r) {
+                Wire.writeRecord(o, r, refs);
+            }
+        }
+        Wire.writeFrame(out, Wire.CB_RETURN, f.conv(), o);
+        out.flush();
+    }
+
+    private static Object answer(Object t, byte op, Object[] a) {
+        if (t == null) {
+            throw new IllegalStateException("no such object of the grader (kept from an earlier call?)");
+        }
+        return switch (op) {
+            case Wire.OP_INTERSECT -> ((Surface) t).intersect((IntersectionRecord) a[0], (Ray) a[1]);
+            case Wire.OP_INTERSECTS_ANY -> ((Surface) t).intersectsAny((Ray) a[0], (IntersectionRecord) a[1]);
+            case Wire.OP_KA -> ((Material) t).ka();
+            case Wire.OP_DIFFUSE -> ((Material) t).diffuse((Vec3) a[0], (Vec3) a[1], (Color) a[2]);
+            case Wire.OP_SPECULAR -> ((Material) t).specular((Vec3) a[0], (Vec3) a[1], (Vec3) a[2], (Color) a[3]);
+            case Wire.OP_UNLIT -> ((Material) t).unlitColor((IntersectionRecord) a[0]);
+            case Wire.OP_AMBIENT -> ((ShadingPoint) t).ambient();
+            case Wire.OP_TO_LIGHT -> {
+                ((ShadingPoint) t).toLight((PointLight) a[0]);
+                yield null;
+            }
+            case Wire.OP_VISIBLE -> ((ShadingPoint) t).visible((PointLight) a[0]);
+            case Wire.OP_AT_DIFFUSE -> ((ShadingPoint) t).diffuse((PointLight) a[0], (Vec3) a[1]);
+            case Wire.OP_AT_SPECULAR -> ((ShadingPoint) t).specular((PointLight) a[0], (Vec3) a[1]);
+            default -> throw new IllegalArgumentException("unknown callback " + op);
+        };
+    }
+
+    private int ephemeral(Object o) {
+        Integer id = ephemeralOf.get(o);
+        if (id == null) {
+            ephemeral.add(o);
+            id = ephemeral.size();
+            ephemeralOf.put(o, id);
+        }
+        return id;
+    }
+
+    /** The handle of a served (stand-in) object, defined in the student process on first use. */
+    private int handle(Object o) {
+        Integer h = handleOf.get(o);
+        if (h != null) {
+            return h;
+        }
+        int id = nextHandle++;
+        try {
+            Object[] data = constructorData(o);
+            Wire.Out d = new Wire.Out();
+            d.writeInt(id);
+            d.writeString(o.getClass().getName());
+            d.writeInt(data.length);
+            for (Object x : data) {
+                Wire.writeValue(d, x, null);
+            }
+            int conv = nextConv++;
+            Wire.writeFrame(out, Wire.DEFINE, conv, d);
+            out.flush();
+            await(conv, Wire.ACK);
+        } catch (IOException e) {
+            throw new DefineFailed(e);
+        }
+        handleOf.put(o, id);
+        byHandle.put(id, o);
+        return id;
+    }
+
+    /** An I/O failure while defining an object, carried out of the encoder. */
+    private static final class DefineFailed extends RuntimeException {
+        private static final long serialVersionUID = 1L;
+
+        DefineFailed(IOException e) {
+            super(e);
+        }
+    }
+
+    private static final Map<Class<?>, Constructor<?>> CONSTRUCTORS = new java.util.concurrent.ConcurrentHashMap<>();
+
+    /**
+     * What the object was made from: for each parameter of its widest public constructor (names
+     * known through {@code -parameters}) the public field or accessor of that name, if it is a
+     * plain value; null otherwise (a material, a surface: the student process gets none).
+     */
+    static Object[] constructorData(Object o) {
+        Constructor<?> k = CONSTRUCTORS.computeIfAbsent(o.getClass(), c -> {
+            Constructor<?> best = null;
+            for (Constructor<?> x : c.getConstructors()) {
+                if (best == null || x.getParameterCount() > best.getParameterCount()) {
+                    best = x;
+                }
+            }
+            return best;
+        });
+        if (k == null) {
+            throw new IllegalArgumentException(o.getClass().getName() + " has no public constructor");
+        }
+        Parameter[] ps = k.getParameters();
+        Object[] data = new Object[ps.length];
+        List<Field> fields = null;
+        int nextField = 0;
+        for (int i = 0; i < ps.length; i++) {
+            Object v;
+            if (ps[i].isNamePresent()) {
+                v = property(o, ps[i].getName());
+            } else {
+                // Without -parameters: the public instance fields in declaration order stand for
+                // the value parameters, name() for the String one.
+                if (fields == null) {
+                    fields = publicFields(o.getClass());
+                }
+                Class<?> t = ps[i].getType();
+                if (t == String.class) {
+                    v = property(o, "name");
+                } else if (nextField < fields.size() && wrap(t).isAssignableFrom(wrap(fields.get(nextField).getType()))) {
+                    v = property(o, fields.get(nextField++).getName());
+                } else {
+                    v = null;
+                }
+            }
+            data[i] = plain(v) ? v : null;
+        }
+        return data;
+    }
+
+    private static List<Field> publicFields(Class<?> c) {
+        List<Class<?>> chain = new ArrayList<>();
+        for (Class<?> x = c; x != null && x != Object.class; x = x.getSuperclass()) {
+            chain.add(0, x);
+        }
+        List<Field> out = new ArrayList<>();
+        for (Class<?> x : chain) {
+            for (Field f : x.getDeclaredFields()) {
+                int m = f.getModifiers();
+                if (java.lang.reflect.Modifier.isPublic(m) && !java.lang.reflect.Modifier.isStatic(m)) {
+                    out.add(f);
+                }
+            }
+        }
+        return out;
+    }
+
+    private static Class<?> wrap(Class<?> t) {
+        return t == double.class ? Double.class : t == int.class ? Integer.class : t == boolean.class ? Boolean.class
+                : t == long.class ? Long.class : t;
+    }
+
+    private static boolean plain(Object v) {
+        return v instanceof Double || v instanceof Integer || v instanceof Boolean || v instanceof Long
+                || v instanceof String || v instanceof Vec3 || v instanceof Color || v instanceof PointLight
+                || v instanceof Ray;
+    }
+
+    private static Object property(Object o, String name) {
+        try {
+            Field f = o.getClass().getField(name);
+            return f.get(o);
+        } catch (NoSuchFieldException | IllegalAccessException e) {
+            try {
+                Method m = o.getClass().getMethod(name);
+                return m.invoke(o);
+            } catch (ReflectiveOperationException e2) {
+                return null;
+            }
+        }
+    }
+
+    private static final Map<Class<?>, Boolean> HEARS_LOOKS = new java.util.concurrent.ConcurrentHashMap<>();
+    private static final Field ANSWERS;
+
+    static {
+        Field f = null;
+        try {
+            f = ShadingPoint.class.getDeclaredField("answers");
+            f.setAccessible(true);
+        } catch (ReflectiveOperationException | RuntimeException e) {
+            f = null;
+        }
+        ANSWERS = f;
+    }
+
+    /** Whether a shading point's answers want to hear toLight (traces): else no callback for it. */
+    private static boolean hearsLooks(ShadingPoint at) {
+        if (ANSWERS == null) {
+            return true;
+        }
+        try {
+            Object a = ANSWERS.get(at);
+            return HEARS_LOOKS.computeIfAbsent(a.getClass(), c -> {
+                try {
+                    return c.getMethod("lookedAt", ShadingPoint.class, PointLight.class, Vec3.class)
+                            .getDeclaringClass() != ShadingPoint.Answers.class;
+                } catch (NoSuchMethodException e) {
+                    return true;
+                }
+            });
+        } catch (IllegalAccessException e) {
+            return true;
+        }
+    }
+
+    /** Grader side: stand-ins become handles, the grader's surfaces, materials and shading points proxies. */
+    private final class Refs implements Wire.Refs {
+        @Override
+        public boolean encode(Wire.Out o, Object x) {
+            if (config.served().contains(x.getClass().getName())) {
+                int h;
+                try {
+                    h = handle(x);
+                } catch (DefineFailed e) {
+                    throw e;
+                }
+                o.writeByte(Wire.HANDLE);
+                o.writeInt(h);
+                return true;
+            }
+            if (x instanceof Surface s) {
+                o.writeByte(Wire.REMOTE_SURFACE);
+                o.writeInt(ephemeral(s));
+                var b = s.boundingBox();
+                o.writeVec3(b.min);
+                o.writeVec3(b.max);
+                o.writeString(s.name());
+                o.writeBoolean(s.isConvex());
+                o.writeInt(s.primitiveCount());
+                return true;
+            }
+            if (x instanceof Material m) {
+                o.writeByte(Wire.REMOTE_MATERIAL);
+                o.writeInt(ephemeral(m));
+                o.writeString(m.name());
+                o.writeBoolean(m.isLit());
+                o.writeBoolean(m.hasSpecular());
+                return true;
+            }
+            if (x instanceof ShadingPoint at) {
+                o.writeByte(Wire.SHADING_POINT);
+                o.writeInt(ephemeral(at));
+                o.writeBoolean(hearsLooks(at));
+                o.writeVec3(at.x);
+                o.writeVec3(at.n);
+                o.writeVec3(at.v);
+                Wire.writeValue(o, at.material, this);
+                return true;
+            }
+            return false;
+        }
+
+        @Override
+        public Object decode(byte tag, Wire.In in) throws IOException {
+            int id = in.readInt();
+            switch (tag) {
+                case Wire.HANDLE: {
+                    Object o = byHandle.get(id);
+                    if (o == null) {
+                        throw new Wire.ProtocolException("unknown handle " + id);
+                    }
+                    return o;
+                }
+                case Wire.REMOTE_SURFACE:
+                case Wire.REMOTE_MATERIAL:
+                    if (id < 1 || id > ephemeral.size()) {
+                        throw new Wire.ProtocolException("unknown object " + id);
+                    }
+                    return ephemeral.get(id - 1);
+                default:
+                    throw new Wire.ProtocolException("unknown value tag " + tag);
+            }
+        }
+    }
+
+    @Override
+    public synchronized void close() {
+        closed = true;
+        watchdog.interrupt();
+        if (proc != null) {
+            try {
+                out.close();
+                proc.waitFor(2, java.util.concurrent.TimeUnit.SECONDS);
+            } catch (IOException | InterruptedException e) {
+                // stopped below
+            }
+            dead();
+        }
+    }
+
+    /** The JVM's own command for a student process: java, the class path, StudentServer. */
+    public static List<String> javaCommand(List<Path> classPath, int heapMb, List<String> studentClasses) {
+        List<String> cmd = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
+                "-Xmx" + heapMb + "m", "-XX:+ExitOnOutOfMemoryError", "-Djava.awt.headless=true",
+                "-XX:+DisableAttachMechanism", "-XX:-UsePerfData", "-XX:TieredStopAtLevel=4", "-Xss4m",
+                "-cp", String.join(File.pathSeparator, classPath.stream().map(Path::toString).toList()),
+                "raylab.remote.StudentServer"));
+        for (String c : studentClasses) {
+            cmd.add("--student");
+            cmd.add(c);
+        }
+        return cmd;
+    }
+}

@@ -1,0 +1,566 @@
+package raylab.remote;
+
+import java.io.BufferedInputStream;
+import java.io.BufferedOutputStream;
+import java.io.ByteArrayOutputStream;
+import java.io.DataInputStream;
+import java.io.EOFException;
+import java.io.FileDescriptor;
+import java.io.FileInputStream;
+import java.io.FileOutputStream;
+import java.io.IOException;
+import java.io.InputStream;
+import java.io.OutputStream;
+import java.io.PrintStream;
+import java.lang.reflect.Constructor;
+import java.lang.reflect.InvocationTargetException;
+import java.lang.reflect.Method;
+import java.nio.charset.StandardCharsets;
+import java.util.ArrayList;
+import java.util.HashMap;
+import java.util.HashSet;
+import java.util.IdentityHashMap;
+import java.util.List;
+import java.util.Map;
+import java.util.Set;
+
+import raylab.light.PointLight;
+import raylab.material.Material;
+import raylab.math.BoundingBox;
+import raylab.math.Color;
+import raylab.math.Vec3;
+import raylab.ray.IntersectionRecord;
+import raylab.ray.Ray;
+import raylab.shading.ShadingPoint;
+import raylab.surface.Surface;
+
+/**
+ * The student process: serves the student's methods to the grader over {@link Wire} frames on
+ * standard input and output. Its class path holds the student's classes of one milestone and the
+ * public framework only; it computes results, never verdicts. What student code prints is
+ * captured and sent back with each reply; a protocol error ends the process at once.
+ * Arguments: {@code --student CLASS} (repeatable): the student's classes, whose stack frames an
+ * exception report keeps.
+ */
+public final class StudentServer {
+    private final DataInputStream in;
+    private final OutputStream out;
+    private final Set<String> studentClasses;
+    private final Map<Integer, Object> handles = new HashMap<>();
+    private final Map<Object, Integer> handleOf = new IdentityHashMap<>();
+    private final Map<Integer, Method> methods = new HashMap<>();
+    private final ByteArrayOutputStream captured = new ByteArrayOutputStream();
+    private final Wire.Out reply = new Wire.Out();
+    private final Refs refs = new Refs();
+    private int nextConv = 1;
+    /** Output kept per reply; more is dropped with a note. */
+    static final int OUTPUT_CAP = 64 * 1024;
+    private boolean outputCut;
+
+    StudentServer(InputStream in, OutputStream out, Set<String> studentClasses) {
+        this.in = new DataInputStream(new BufferedInputStream(in, 1 << 16));
+        this.out = out;
+        this.studentClasses = studentClasses;
+    }
+
+    public static void main(String[] args) throws IOException {
+        Set<String> students = new HashSet<>();
+        for (int i = 0; i < args.length; i++) {
+            if (args[i].equals("--student") && i + 1 < args.length) {
+                students.add(args[++i]);
+            }
+        }
+        OutputStream proto = new BufferedOutputStream(new FileOutputStream(FileDescriptor.out), 1 << 16);
+        InputStream stdin = new FileInputStream(FileDescriptor.in);
+        StudentServer s = new StudentServer(stdin, proto, students);
+        System.setIn(InputStream.nullInputStream());
+        PrintStream capture = new PrintStream(new OutputStream() {
+            @Override
+            public void write(int b) {
+                s.capture(new byte[] {(byte) b}, 0, 1);
+            }
+
+            @Override
+            public void write(byte[] b, int off, int len) {
+                s.capture(b, off, len);
+            }
+        }, true, StandardCharsets.UTF_8);
+        System.setOut(capture);
+        System.setErr(capture);
+        proto.write((Wire.HELLO + "\n").getBytes(StandardCharsets.US_ASCII));
+        proto.flush();
+        try {
+            s.serve();
+            Runtime.getRuntime().halt(0);
+        } catch (Throwable e) {
+            // A broken or hostile frame, or a write to a closed pipe: nothing sensible can follow.
+            Runtime.getRuntime().halt(3);
+        }
+    }
+
+    private synchronized void capture(byte[] b, int off, int len) {
+        int room = OUTPUT_CAP - captured.size();
+        if (len > room) {
+            outputCut = true;
+            len = Math.max(0, room);
+        }
+        captured.write(b, off, len);
+    }
+
+    private synchronized String drainOutput() {
+        String s = captured.toString(StandardCharsets.UTF_8);
+        if (outputCut) {
+            s += "\n(output cut at " + OUTPUT_CAP / 1024 + " KiB)";
+        }
+        captured.reset();
+        outputCut = false;
+        return s;
+    }
+
+    /** Serves frames until the end of standard input. */
+    void serve() throws IOException {
+        while (true) {
+            Wire.Frame f;
+            try {
+                f = Wire.readFrame(in);
+            } catch (EOFException e) {
+                return;
+            }
+            dispatch(f);
+        }
+    }
+
+    private void dispatch(Wire.Frame f) throws IOException {
+        switch (f.type()) {
+            case Wire.DEFINE -> define(f);
+            case Wire.METHOD -> method(f);
+            case Wire.CALL -> call(f);
+            case Wire.BATCH -> batch(f);
+            default -> throw new Wire.ProtocolException("unexpected frame type " + f.type());
+        }
+    }
+
+    private void send(byte type, int conv) throws IOException {
+        Wire.writeFrame(out, type, conv, reply);
+        out.flush();
+    }
+
+    private void define(Wire.Frame f) throws IOException {
+        Wire.In in = f.in();
+        int handle = in.readInt();
+        String cls = in.readString();
+        int n = in.readInt();
+        Object[] args = readArgs(in, n);
+        Object made;
+        try {
+            made = construct(Class.forName(cls), args);
+        } catch (Throwable e) {
+            replyThrow(f.conv(), -1, unwrap(e));
+            return;
+        }
+        Object old = handles.put(handle, made);
+        if (old != null) {
+            handleOf.remove(old);
+        }
+        handleOf.put(made, handle);
+        reply.reset();
+        send(Wire.ACK, f.conv());
+    }
+
+    private static Object construct(Class<?> c, Object[] args) throws Throwable {
+        for (Constructor<?> k : c.getConstructors()) {
+            if (k.getParameterCount() == args.length && accepts(k.getParameterTypes(), args)) {
+                try {
+                    return k.newInstance(args);
+                } catch (InvocationTargetException e) {
+                    throw e.getCause();
+                }
+            }
+        }
+        throw new NoSuchMethodException("no public constructor of " + c.getName() + " takes these " + args.length
+                + " values");
+    }
+
+    private static boolean accepts(Class<?>[] types, Object[] args) {
+        for (int i = 0; i < types.length; i++) {
+            Class<?> t = types[i];
+            Object a = args[i];
+            if (t.isPrimitive()) {
+                Class<?> box = t == double.class ? Double.class : t == int.class ? Integer.class
+                        : t == boolean.class ? Boolean.class : t == long.class ? Long.class : Void.class;
+                if (!box.isInstance(a)) {
+                    return false;
+                }
+            } else if (a != null && !t.isInstance(a)) {
+                return false;
+            }
+        }
+        return true;
+    }
+
+    private void method(Wire.Frame f) throws IOException {
+        Wire.In in = f.in();
+        int id = in.readInt();
+        String cls = in.readString();
+        String name = in.readString();
+        int arity = in.readInt();
+        try {
+            Method found = null;
+            for (Method m : Class.forName(cls).getMethods()) {
+                if (m.getName().equals(name) && m.getParameterCount() == arity) {
+                    found = m;
+                }
+            }
+            if (found == null) {
+                throw new NoSuchMethodException(cls + "." + name + " with " + arity + " parameters");
+            }
+            methods.put(id, found);
+        } catch (Throwable e) {
+            replyThrow(f.conv(), -1, unwrap(e));
+            return;
+        }
+        reply.reset();
+        send(Wire.ACK, f.conv());
+    }
+
+    private Object[] readArgs(Wire.In in, int n) throws IOException {
+        if (n < 0 || n > 64) {
+            throw new Wire.ProtocolException("bad argument count " + n);
+        }
+        Object[] args = new Object[n];
+        for (int i = 0; i < n; i++) {
+            args[i] = Wire.readValue(in, refs);
+        }
+        return args;
+    }
+
+    private Method methodOf(int id) throws IOException {
+        Method m = methods.get(id);
+        if (m == null) {
+            throw new Wire.ProtocolException("unknown method " + id);
+        }
+        return m;
+    }
+
+    private void call(Wire.Frame f) throws IOException {
+        Wire.In in = f.in();
+        Method m = methodOf(in.readInt());
+        Object target = Wire.readValue(in, refs);
+        Object[] args = readArgs(in, in.readInt());
+        Object result;
+        try {
+            result = invoke(m, target, args);
+        } catch (Throwable e) {
+            replyThrow(f.conv(), -1, e);
+            return;
+        }
+        reply.reset();
+        writeResult(reply, result, args);
+        reply.writeString(drainOutput());
+        send(Wire.RETURN, f.conv());
+    }
+
+    private void batch(Wire.Frame f) throws IOException {
+        Wire.In in = f.in();
+        Method m = methodOf(in.readInt());
+        Object target = Wire.readValue(in, refs);
+        int calls = in.readInt();
+        if (calls < 0 || calls > in.end - in.pos) {
+            throw new Wire.ProtocolException("bad batch size " + calls);
+        }
+        Wire.Out results = new Wire.Out();
+        for (int i = 0; i < calls; i++) {
+            Object[] args = readArgs(in, in.readInt());
+            Object result;
+            try {
+                result = invoke(m, target, args);
+            } catch (Throwable e) {
+                replyThrow(f.conv(), i, e);
+                return;
+            }
+            writeResult(results, result, args);
+        }
+        reply.reset();
+        reply.writeInt(calls);
+        reply.write(results);
+        reply.writeString(drainOutput());
+        send(Wire.BATCH_RETURN, f.conv());
+    }
+
+    private void writeResult(Wire.Out o, Object result, Object[] args) {
+        Wire.writeValue(o, result, refs);
+        for (Object a : args) {
+            if (a instanceof IntersectionRecord r) {
+                Wire.writeRecord(o, r, refs);
+            }
+        }
+    }
+
+    private static Object invoke(Method m, Object target, Object[] args) throws Throwable {
+        if (!accepts(m.getParameterTypes(), args)) {
+            throw new IllegalArgumentException("the arguments do not fit " + m);
+        }
+        try {
+            return m.invoke(target, args);
+        } catch (InvocationTargetException e) {
+            throw e.getCause();
+        }
+    }
+
+    private static Throwable unwrap(Throwable e) {
+        return e instanceof InvocationTargetException && e.getCause() != null ? e.getCause() : e;
+    }
+
+    private void replyThrow(int conv, int index, Throwable e) throws IOException {
+        reply.reset();
+        reply.writeInt(index);
+        reply.writeString(e.getClass().getName());
+        String msg;
+        try {
+            msg = e.getMessage();
+        } catch (Throwable t) {
+            msg = "(its getMessage threw " + t.getClass().getName() + ")";
+        }
+        reply.writeString(msg == null ? null : msg.length() > 2000 ? msg.substring(0, 2000) + " ..." : msg);
+        List<String> frames = new ArrayList<>();
+        for (StackTraceElement s : e.getStackTrace()) {
+            String cls = s.getClassName();
+            int dollar = cls.indexOf('$');
+            String outer = dollar < 0 ? cls : cls.substring(0, dollar);
+            if (studentClasses.contains(outer) && frames.size() < 20) {
+                frames.add(cls.substring(cls.lastIndexOf('.') + 1) + "." + s.getMethodName() + " ("
+                        + s.getFileName() + ":" + s.getLineNumber() + ")");
+            }
+        }
+        reply.writeInt(frames.size());
+        frames.forEach(reply::writeString);
+        reply.writeString(drainOutput());
+        send(Wire.THROW, conv);
+    }
+
+    /** Asks the grader's object {@code id} something; record arguments are updated from the answer. */
+    Object callback(int id, byte op, Object... args) {
+        try {
+            Wire.Out o = new Wire.Out();
+            o.writeInt(id);
+            o.writeByte(op);
+            o.writeInt(args.length);
+            for (Object a : args) {
+                Wire.writeValue(o, a, refs);
+            }
+            int conv = nextConv++;
+            Wire.writeFrame(out, Wire.CALLBACK, conv, o);
+            out.flush();
+            while (true) {
+                Wire.Frame f = Wire.readFrame(in);
+                if (f.type() == Wire.CB_RETURN && f.conv() == conv) {
+                    Object v = Wire.readValue(f.in(), refs);
+                    for (Object a : args) {
+                        if (a instanceof IntersectionRecord r) {
+                            Wire.readRecordInto(f.in(), r, refs);
+                        }
+                    }
+                    return v;
+                } else if (f.type() == Wire.CB_THROW && f.conv() == conv) {
+                    throw new GraderFailure(f.in().readString());
+                } else {
+                    dispatch(f);
+                }
+            }
+        } catch (IOException e) {
+            Runtime.getRuntime().halt(3);
+            throw new AssertionError(e);
+        }
+    }
+
+    /** The grader could not answer a callback: student code should not catch this. */
+    public static final class GraderFailure extends Error {
+        private static final long serialVersionUID = 1L;
+
+        GraderFailure(String message) {
+            super(message);
+        }
+    }
+
+    /** The grader's surface (the scene, a blocker), asked through callbacks. */
+    final class RemoteSurface extends Surface {
+        final int id;
+        private final BoundingBox box;
+        private final boolean convex;
+        private final int count;
+
+        RemoteSurface(int id, BoundingBox box, String name, boolean convex, int count) {
+            super(null, name);
+            this.id = id;
+            this.box = box;
+            this.convex = convex;
+            this.count = count;
+        }
+
+        @Override
+        public boolean intersect(IntersectionRecord outRecord, Ray ray) {
+            return Boolean.TRUE.equals(callback(id, Wire.OP_INTERSECT, outRecord, ray));
+        }
+
+        @Override
+        public boolean intersectsAny(Ray ray, IntersectionRecord scratch) {
+            return Boolean.TRUE.equals(callback(id, Wire.OP_INTERSECTS_ANY, ray, scratch));
+        }
+
+        @Override
+        public BoundingBox boundingBox() {
+            return box;
+        }
+
+        @Override
+        public boolean isConvex() {
+            return convex;
+        }
+
+        @Override
+        public int primitiveCount() {
+            return count;
+        }
+    }
+
+    /** The grader's material, asked through callbacks. */
+    final class RemoteMaterial extends Material {
+        final int id;
+        private final boolean lit;
+        private final boolean specular;
+
+        RemoteMaterial(int id, String name, boolean lit, boolean specular) {
+            super(name);
+            this.id = id;
+            this.lit = lit;
+            this.specular = specular;
+        }
+
+        @Override
+        public boolean isLit() {
+            return lit;
+        }
+
+        @Override
+        public boolean hasSpecular() {
+            return specular;
+        }
+
+        @Override
+        public Color ka() {
+            return (Color) callback(id, Wire.OP_KA);
+        }
+
+        @Override
+        public Color diffuse(Vec3 n, Vec3 l, Color intensity) {
+            return (Color) callback(id, Wire.OP_DIFFUSE, n, l, intensity);
+        }
+
+        @Override
+        public Color specular(Vec3 n, Vec3 l, Vec3 v, Color intensity) {
+            return (Color) callback(id, Wire.OP_SPECULAR, n, l, v, intensity);
+        }
+
+        @Override
+        public Color unlitColor(IntersectionRecord hit) {
+            return (Color) callback(id, Wire.OP_UNLIT, hit);
+        }
+    }
+
+    /** A shading point's questions, answered by the grader's shading point. */
+    final class RemoteAnswers implements ShadingPoint.Answers {
+        final int id;
+        final boolean hearsLooks;
+
+        RemoteAnswers(int id, boolean hearsLooks) {
+            this.id = id;
+            this.hearsLooks = hearsLooks;
+        }
+
+        @Override
+        public Color ambient(ShadingPoint at) {
+            return (Color) callback(id, Wire.OP_AMBIENT);
+        }
+
+        @Override
+        public void lookedAt(ShadingPoint at, PointLight light, Vec3 l) {
+            if (hearsLooks) {
+                callback(id, Wire.OP_TO_LIGHT, light);
+            }
+        }
+
+        @Override
+        public boolean visible(ShadingPoint at, PointLight light) {
+            return Boolean.TRUE.equals(callback(id, Wire.OP_VISIBLE, light));
+        }
+
+        @Override
+        public Color diffuse(ShadingPoint at, PointLight light, Vec3 l) {
+            return (Color) callback(id, Wire.OP_AT_DIFFUSE, light, l);
+        }
+
+        @Override
+        public Color specular(ShadingPoint at, PointLight light, Vec3 l) {
+            return (Color) callback(id, Wire.OP_AT_SPECULAR, light, l);
+        }
+    }
+
+    /** Student side: handles for defined objects, proxies for the grader's. */
+    final class Refs implements Wire.Refs {
+        @Override
+        public boolean encode(Wire.Out out, Object o) {
+            Integer h = handleOf.get(o);
+            if (h != null) {
+                out.writeByte(Wire.HANDLE);
+                out.writeInt(h);
+                return true;
+            }
+            if (o instanceof RemoteSurface s) {
+                out.writeByte(Wire.REMOTE_SURFACE);
+                out.writeInt(s.id);
+                return true;
+            }
+            if (o instanceof RemoteMaterial m) {
+                out.writeByte(Wire.REMOTE_MATERIAL);
+                out.writeInt(m.id);
+                return true;
+            }
+            return false;
+        }
+
+        @Override
+        public Object decode(byte tag, Wire.In in) throws IOException {
+            switch (tag) {
+                case Wire.HANDLE: {
+                    int h = in.readInt();
+                    Object o = handles.get(h);
+                    if (o == null) {
+                        throw new Wire.ProtocolException("unknown handle " + h);
+                    }
+                    return o;
+                }
+                case Wire.REMOTE_SURFACE: {
+                    int id = in.readInt();
+                    BoundingBox b = new BoundingBox(in.readVec3(), in.readVec3());
+                    return new RemoteSurface(id, b, in.readString(), in.readBoolean(), in.readInt());
+                }
+                case Wire.REMOTE_MATERIAL:
+                    return new RemoteMaterial(in.readInt(), in.readString(), in.readBoolean(), in.readBoolean());
+                case Wire.SHADING_POINT: {
+                    int id = in.readInt();
+                    boolean looks = in.readBoolean();
+                    Vec3 x = in.readVec3();
+                    Vec3 n = in.readVec3();
+                    Vec3 v = in.readVec3();
+                    Object m = Wire.readValue(in, this);
+                    if (m != null && !(m instanceof Material)) {
+                        throw new Wire.ProtocolException("a shading point's material is not a material");
+                    }
+                    return new ShadingPoint(x, n, v, (Material) m, new RemoteAnswers(id, looks));
+                }
+                default:
+                    throw new Wire.ProtocolException("unknown value tag " + tag);
+            }
+        }
+    }
+}

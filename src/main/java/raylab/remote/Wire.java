@@ -1,0 +1,444 @@
+package raylab.remote;
+
+import java.io.DataInputStream;
+import java.io.EOFException;
+import java.io.IOException;
+import java.io.OutputStream;
+import java.nio.charset.StandardCharsets;
+import java.util.ArrayList;
+import java.util.Arrays;
+import java.util.List;
+
+import raylab.light.PointLight;
+import raylab.math.Color;
+import raylab.math.Vec3;
+import raylab.ray.IntersectionRecord;
+import raylab.ray.Ray;
+
+/**
+ * The binary protocol between the grader and the student process ({@link StudentServer}).
+ *
+ * <p>A frame is {@code [int len][byte type][int conv][payload]}, big-endian, where {@code len}
+ * counts the type, the conversation number and the payload. A reply carries the number of the
+ * frame it answers. Values are tagged ({@link #writeValue}); doubles travel as their raw bits, so
+ * NaN payloads, −0 and the infinities arrive exactly. Nothing here is secret: the same class runs
+ * on both sides.
+ */
+public final class Wire {
+    /** The first line the student process prints, before any frame. */
+    public static final String HELLO = "raylab-student-server 1";
+    /** The largest frame either side accepts (a frame over it is a protocol error). */
+    public static final int MAX_FRAME = 64 << 20;
+
+    // Frame types.
+    /** Grader: {@code [int handle][String class][values...]} construct a student object. */
+    public static final byte DEFINE = 1;
+    /** Grader: {@code [int id][String class][String name][int arity]} name a method for CALL. */
+    public static final byte METHOD = 2;
+    /** Grader: {@code [int method][value target][int n][values]}. */
+    public static final byte CALL = 3;
+    /** Student: {@code [value result][records of the record arguments][String output]}. */
+    public static final byte RETURN = 4;
+    /** Student: {@code [String class][String message][int n][String frames][String output]}. */
+    public static final byte THROW = 5;
+    /** Student: {@code [int object][byte op][int n][values]} ask the grader's object. */
+    public static final byte CALLBACK = 6;
+    /** Grader: {@code [value result][records of the record arguments]}. */
+    public static final byte CB_RETURN = 7;
+    /** Grader: {@code [String message]}. */
+    public static final byte CB_THROW = 8;
+    /** Grader: {@code [int method][value target][int calls][int n][values]...} many calls at once. */
+    public static final byte BATCH = 9;
+    /** Student: {@code [int calls]([value result][records])... [String output]}. */
+    public static final byte BATCH_RETURN = 10;
+    /** Either side: the empty reply to DEFINE and METHOD. */
+    public static final byte ACK = 11;
+
+    // Value tags.
+    public static final byte NULL = 0;
+    public static final byte FALSE = 1;
+    public static final byte TRUE = 2;
+    public static final byte INT = 3;
+    public static final byte LONG = 4;
+    public static final byte DOUBLE = 5;
+    public static final byte STRING = 6;
+    public static final byte VEC3 = 7;
+    public static final byte COLOR = 8;
+    public static final byte RAY = 9;
+    public static final byte LIGHT = 10;
+    public static final byte RECORD = 11;
+    /** A student object the grader defined: {@code [int handle]}. */
+    public static final byte HANDLE = 12;
+    public static final byte LIST = 13;
+    /** A grader surface: {@code [int id][Vec3 min][Vec3 max][String name][bool convex][int count]}. */
+    public static final byte REMOTE_SURFACE = 14;
+    /** A grader material: {@code [int id][String name][bool lit][bool specular]}. */
+    public static final byte REMOTE_MATERIAL = 15;
+    /** A shading point: {@code [int answers][Vec3 x][Vec3 n][Vec3 v][value material]}. */
+    public static final byte SHADING_POINT = 16;
+
+    // Callback operations.
+    public static final byte OP_INTERSECT = 1;
+    public static final byte OP_INTERSECTS_ANY = 2;
+    public static final byte OP_KA = 3;
+    public static final byte OP_DIFFUSE = 4;
+    public static final byte OP_SPECULAR = 5;
+    public static final byte OP_UNLIT = 6;
+    public static final byte OP_AMBIENT = 7;
+    public static final byte OP_TO_LIGHT = 8;
+    public static final byte OP_VISIBLE = 9;
+    public static final byte OP_AT_DIFFUSE = 10;
+    public static final byte OP_AT_SPECULAR = 11;
+
+    private Wire() {
+    }
+
+    /** How one side writes and reads the objects that are not plain values (handles, proxies). */
+    public interface Refs {
+        /** Writes a tag and data for {@code o} and returns true, or returns false if {@code o} is unknown. */
+        boolean encode(Out out, Object o);
+
+        /** Reads the data after {@code tag} (one of HANDLE, REMOTE_*, SHADING_POINT). */
+        Object decode(byte tag, In in) throws IOException;
+    }
+
+    /** A growable output buffer. */
+    public static final class Out {
+        byte[] buf = new byte[256];
+        int n;
+
+        public void reset() {
+            n = 0;
+        }
+
+        public int size() {
+            return n;
+        }
+
+        private void need(int k) {
+            if (n + k > buf.length) {
+                buf = Arrays.copyOf(buf, Math.max(buf.length * 2, n + k));
+            }
+        }
+
+        /** Appends another buffer's bytes. */
+        public void write(Out other) {
+            need(other.n);
+            System.arraycopy(other.buf, 0, buf, n, other.n);
+            n += other.n;
+        }
+
+        public void writeByte(int b) {
+            need(1);
+            buf[n++] = (byte) b;
+        }
+
+        public void writeInt(int v) {
+            need(4);
+            buf[n++] = (byte) (v >>> 24);
+            buf[n++] = (byte) (v >>> 16);
+            buf[n++] = (byte) (v >>> 8);
+            buf[n++] = (byte) v;
+        }
+
+        public void writeLong(long v) {
+            writeInt((int) (v >>> 32));
+            writeInt((int) v);
+        }
+
+        public void writeDouble(double d) {
+            writeLong(Double.doubleToRawLongBits(d));
+        }
+
+        public void writeBoolean(boolean b) {
+            writeByte(b ? 1 : 0);
+        }
+
+        public void writeString(String s) {
+            if (s == null) {
+                writeInt(-1);
+                return;
+            }
+            byte[] b = s.getBytes(StandardCharsets.UTF_8);
+            writeInt(b.length);
+            need(b.length);
+            System.arraycopy(b, 0, buf, n, b.length);
+            n += b.length;
+        }
+
+        public void writeVec3(Vec3 v) {
+            writeDouble(v.x);
+            writeDouble(v.y);
+            writeDouble(v.z);
+        }
+    }
+
+    /** A frame's payload being read. */
+    public static final class In {
+        final byte[] buf;
+        int pos;
+        final int end;
+
+        public In(byte[] buf, int pos, int end) {
+            this.buf = buf;
+            this.pos = pos;
+            this.end = end;
+        }
+
+        private void need(int k) throws IOException {
+            if (k < 0 || pos + k > end) {
+                throw new ProtocolException("frame too short");
+            }
+        }
+
+        public boolean atEnd() {
+            return pos == end;
+        }
+
+        public byte readByte() throws IOException {
+            need(1);
+            return buf[pos++];
+        }
+
+        public int readInt() throws IOException {
+            need(4);
+            int v = ((buf[pos] & 0xff) << 24) | ((buf[pos + 1] & 0xff) << 16) | ((buf[pos + 2] & 0xff) << 8)
+                    | (buf[pos + 3] & 0xff);
+            pos += 4;
+            return v;
+        }
+
+        public long readLong() throws IOException {
+            long hi = readInt();
+            long lo = readInt() & 0xffffffffL;
+            return (hi << 32) | lo;
+        }
+
+        public double readDouble() throws IOException {
+            return Double.longBitsToDouble(readLong());
+        }
+
+        public boolean readBoolean() throws IOException {
+            return readByte() != 0;
+        }
+
+        public String readString() throws IOException {
+            int len = readInt();
+            if (len == -1) {
+                return null;
+            }
+            need(len);
+            String s = new String(buf, pos, len, StandardCharsets.UTF_8);
+            pos += len;
+            return s;
+        }
+
+        public Vec3 readVec3() throws IOException {
+            return new Vec3(readDouble(), readDouble(), readDouble());
+        }
+    }
+
+    /** A protocol violation: the other side is broken or hostile. */
+    public static final class ProtocolException extends IOException {
+        private static final long serialVersionUID = 1L;
+
+        public ProtocolException(String message) {
+            super(message);
+        }
+    }
+
+    /** One frame read. */
+    public record Frame(byte type, int conv, In in) {
+    }
+
+    /** Writes one frame (not flushed). */
+    public static void writeFrame(OutputStream out, byte type, int conv, Out payload) throws IOException {
+        int len = 5 + payload.n;
+        byte[] head = {(byte) (len >>> 24), (byte) (len >>> 16), (byte) (len >>> 8), (byte) len, type,
+            (byte) (conv >>> 24), (byte) (conv >>> 16), (byte) (conv >>> 8), (byte) conv};
+        out.write(head);
+        out.write(payload.buf, 0, payload.n);
+    }
+
+    /** Reads one frame; EOFException at a clean end of stream before a frame. */
+    public static Frame readFrame(DataInputStream in) throws IOException {
+        int len = in.readInt();
+        if (len < 5 || len > MAX_FRAME) {
+            throw new ProtocolException("bad frame length " + len);
+        }
+        byte type = in.readByte();
+        int conv = in.readInt();
+        byte[] b = new byte[len - 5];
+        try {
+            in.readFully(b);
+        } catch (EOFException e) {
+            throw new ProtocolException("frame cut short");
+        }
+        return new Frame(type, conv, new In(b, 0, b.length));
+    }
+
+    /** Writes a tagged value: plain values here, other objects through {@code refs}. */
+    public static void writeValue(Out out, Object o, Refs refs) {
+        if (o == null) {
+            out.writeByte(NULL);
+        } else if (o instanceof Boolean b) {
+            out.writeByte(b ? TRUE : FALSE);
+        } else if (o instanceof Integer i) {
+            out.writeByte(INT);
+            out.writeInt(i);
+        } else if (o instanceof Long l) {
+            out.writeByte(LONG);
+            out.writeLong(l);
+        } else if (o instanceof Double d) {
+            out.writeByte(DOUBLE);
+            out.writeDouble(d);
+        } else if (o instanceof String s) {
+            out.writeByte(STRING);
+            out.writeString(s);
+        } else if (o instanceof Vec3 v) {
+            out.writeByte(VEC3);
+            out.writeVec3(v);
+        } else if (o instanceof Color c) {
+            out.writeByte(COLOR);
+            out.writeDouble(c.r);
+            out.writeDouble(c.g);
+            out.writeDouble(c.b);
+        } else if (o instanceof Ray r) {
+            out.writeByte(RAY);
+            writeVec3OrNull(out, r.p);
+            writeVec3OrNull(out, r.d);
+            out.writeDouble(r.tMin);
+            out.writeDouble(r.tMax);
+        } else if (o instanceof PointLight l) {
+            out.writeByte(LIGHT);
+            writeVec3OrNull(out, l.position);
+            writeValue(out, l.intensity, refs);
+            out.writeBoolean(l.castsShadows);
+            out.writeString(l.name);
+        } else if (o instanceof IntersectionRecord r) {
+            out.writeByte(RECORD);
+            writeRecord(out, r, refs);
+        } else if (o instanceof List<?> list) {
+            out.writeByte(LIST);
+            out.writeInt(list.size());
+            for (Object e : list) {
+                writeValue(out, e, refs);
+            }
+        } else if (refs == null || !refs.encode(out, o)) {
+            throw new IllegalArgumentException("cannot send a " + o.getClass().getName() + " across the process boundary");
+        }
+    }
+
+    private static void writeVec3OrNull(Out out, Vec3 v) {
+        if (v == null) {
+            out.writeByte(NULL);
+        } else {
+            out.writeByte(VEC3);
+            out.writeVec3(v);
+        }
+    }
+
+    private static Vec3 readVec3OrNull(In in) throws IOException {
+        byte tag = in.readByte();
+        if (tag == NULL) {
+            return null;
+        }
+        if (tag != VEC3) {
+            throw new ProtocolException("expected a Vec3, got tag " + tag);
+        }
+        return in.readVec3();
+    }
+
+    /** A record's fields (not its material, which follows from its surface). */
+    public static void writeRecord(Out out, IntersectionRecord r, Refs refs) {
+        out.writeDouble(r.t);
+        writeVec3OrNull(out, r.point);
+        writeVec3OrNull(out, r.normal);
+        Object s = r.surface;
+        if (s != null && (refs == null || !encodes(refs, s))) {
+            s = null;
+        }
+        writeValue(out, s, refs);
+        out.writeInt(r.primitive);
+        out.writeLong(r.tests);
+    }
+
+    private static boolean encodes(Refs refs, Object s) {
+        Out probe = new Out();
+        return refs.encode(probe, s);
+    }
+
+    /** Reads a record's fields into {@code r}; the material is the surface's. */
+    public static void readRecordInto(In in, IntersectionRecord r, Refs refs) throws IOException {
+        r.t = in.readDouble();
+        r.point = readVec3OrNull(in);
+        r.normal = readVec3OrNull(in);
+        Object s = readValue(in, refs);
+        if (s != null && !(s instanceof raylab.surface.Surface)) {
+            throw new ProtocolException("a record's surface is not a surface");
+        }
+        r.surface = (raylab.surface.Surface) s;
+        r.material = r.surface == null ? null : r.surface.material();
+        r.primitive = in.readInt();
+        r.tests = in.readLong();
+    }
+
+    /** Reads a tagged value. */
+    public static Object readValue(In in, Refs refs) throws IOException {
+        byte tag = in.readByte();
+        switch (tag) {
+            case NULL:
+                return null;
+            case FALSE:
+                return Boolean.FALSE;
+            case TRUE:
+                return Boolean.TRUE;
+            case INT:
+                return in.readInt();
+            case LONG:
+                return in.readLong();
+            case DOUBLE:
+                return in.readDouble();
+            case STRING:
+                return in.readString();
+            case VEC3:
+                return in.readVec3();
+            case COLOR:
+                return new Color(in.readDouble(), in.readDouble(), in.readDouble());
+            case RAY: {
+                Vec3 p = readVec3OrNull(in);
+                Vec3 d = readVec3OrNull(in);
+                return new Ray(p, d, in.readDouble(), in.readDouble());
+            }
+            case LIGHT: {
+                Vec3 p = readVec3OrNull(in);
+                Object c = readValue(in, refs);
+                if (c != null && !(c instanceof Color)) {
+                    throw new ProtocolException("a light's intensity is not a colour");
+                }
+                return new PointLight(p, (Color) c, in.readBoolean(), in.readString());
+            }
+            case RECORD: {
+                IntersectionRecord r = new IntersectionRecord();
+                readRecordInto(in, r, refs);
+                return r;
+            }
+            case LIST: {
+                int n = in.readInt();
+                if (n < 0 || n > in.end - in.pos) {
+                    throw new ProtocolException("bad list length " + n);
+                }
+                List<Object> l = new ArrayList<>(n);
+                for (int i = 0; i < n; i++) {
+                    l.add(readValue(in, refs));
+                }
+                return l;
+            }
+            default:
+                if (refs == null) {
+                    throw new ProtocolException("unknown value tag " + tag);
+                }
+                return refs.decode(tag, in);
+        }
+    }
+}
