@@ -235,7 +235,7 @@ public final class Check {
      * a → b → c → a. Strictly inside all three: one of the edge tests is the wrong way round
      * (or uses another n). Exactly on an edge or a vertex: the closed triangle's ≥ 0.
      */
-    static String edgeHint(Triangle tri, Vec3 x) {
+    public static String edgeHint(Triangle tri, Vec3 x) {
         Vec3 n = tri.b.minus(tri.a).cross(tri.c.minus(tri.a));
         double[] e = {
             tri.b.minus(tri.a).cross(x.minus(tri.a)).dot(n),
