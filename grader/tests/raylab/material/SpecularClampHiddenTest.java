@@ -46,7 +46,7 @@ class SpecularClampHiddenTest {
             Color light = new Color(uniform(r, 0.1, 2), uniform(r, 0.1, 2), uniform(r, 0.1, 2));
             BlinnPhong m = new BlinnPhong(new Color(0.5, 0.5, 0.5), ks, p, Color.BLACK, "shiny");
             Vec3 h = v.plus(l).normalize();
-            assertColor("specular with n·h = " + n.dot(h) + " < 0, p = " + p + " #" + i + " (seed " + seed + "): n " + n
+            assertColor("Blinn-Phong term at n·h = " + n.dot(h) + " < 0, p = " + p + " #" + i + " (seed " + seed + "): n " + n
                     + ", l " + l + ", v " + v, Color.BLACK, m.specular(n, l, v, light),
                     "clamp before the power: max(0, n·h)^p; (n·h)^p is positive for an even p and NaN for a"
                             + " fractional p when n·h < 0");

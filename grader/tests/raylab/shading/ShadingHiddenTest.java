@@ -121,7 +121,7 @@ class ShadingHiddenTest {
         Vec3 x = new Vec3(1, 2, 3);
         Vec3 n = new Vec3(0, 0, 1);
         PointLight atX = new PointLight(x, Color.WHITE, true, "at x");
-        PointLight horizon = new PointLight(x.plus(new Vec3(5, 0, 0)), Color.WHITE, true, "on the horizon");
+        PointLight horizon = new PointLight(x.plus(new Vec3(5, 0, 0)), Color.WHITE, true, "at the horizon line");
         List<String> asked = new ArrayList<>();
         Color c = Shading.shade(ShadingPoint.plain(x, n, n, m, Color.WHITE, l -> asked.add(l.name)),
                 List.of(atX, horizon));

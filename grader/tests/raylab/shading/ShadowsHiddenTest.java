@@ -109,7 +109,7 @@ class ShadowsHiddenTest {
     @DisplayName("a blocker beyond the light casts no shadow")
     void blockerBeyondTheLightCastsNoShadow() {
         Box ground = new Box(new Vec3(-50, -1, -50), new Vec3(50, 0, 50), M, "ground");
-        Sphere beyond = new Sphere(new Vec3(0, 10, 0), 2, M, "beyond the light");
+        Sphere beyond = new Sphere(new Vec3(0, 10, 0), 2, M, "ball past the lamp");
         Group scene = new Group(List.of(ground, beyond), "scene");
         Vec3 x = new Vec3(0, 0, 0);
         Vec3 n = new Vec3(0, 1, 0);
@@ -123,7 +123,7 @@ class ShadowsHiddenTest {
     @DisplayName("a blocker just before the light casts a shadow")
     void blockerJustBeforeTheLightCastsAShadow() {
         Box ground = new Box(new Vec3(-50, -1, -50), new Vec3(50, 0, 50), M, "ground");
-        Sphere near = new Sphere(new Vec3(0, 9, 0), 0.5, M, "just below the light");
+        Sphere near = new Sphere(new Vec3(0, 9, 0), 0.5, M, "ball a hair under the lamp");
         Group scene = new Group(List.of(ground, near), "scene");
         Vec3 x = new Vec3(0, 0, 0);
         Vec3 n = new Vec3(0, 1, 0);
