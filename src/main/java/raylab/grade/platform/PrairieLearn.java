@@ -125,7 +125,10 @@ public final class PrairieLearn {
         msg.append('.');
         for (GradeReport.Milestone m : r.milestones()) {
             for (String n : m.notes()) {
-                msg.append('\n').append(m.id()).append(": ").append(n);
+                // A note about the hidden run (it did not finish) is hidden information too.
+                if (afterDueDate || !n.toLowerCase(Locale.ROOT).contains("hidden")) {
+                    msg.append('\n').append(m.id()).append(": ").append(n);
+                }
             }
         }
         if (!gradable) {

@@ -51,7 +51,7 @@ class PrairieLearnTest {
 
     @Test
     void scoreIsTheShareOfThePointsShownAndHiddenTestsWaitForTheDueDate() throws Exception {
-        GradeReport r = report(List.of(),
+        GradeReport r = report(List.of("the hidden tests' run did not finish (see the hidden tests)"),
                 test("box", "hitsFromOutside", Kind.VISIBLE, 2, true, "visible", null),
                 test("box", "missesBehind", Kind.VISIBLE, 3, false, "visible", null),
                 test("box", "BoxHiddenTest.secretEdge", Kind.HIDDEN, 5, false, "after_due_date", null));
@@ -59,6 +59,7 @@ class PrairieLearnTest {
         assertEquals(0.4, before.get("score").asDouble(), 1e-12, "2 of the 5 visible points");
         assertEquals(2, before.get("tests").size(), "the hidden test is left out before the due date: " + before);
         assertFalse(before.toString().contains("secretEdge"), "nothing of the hidden test: " + before);
+        assertFalse(before.get("message").asText().contains("did not finish"), "nor of the hidden run: " + before);
         assertTrue(before.get("gradable").asBoolean());
         assertEquals("expected t = 2, got 3", before.get("tests").get(1).get("message").asText());
         assertEquals(0.0, before.get("tests").get(1).get("points").asDouble());
@@ -68,6 +69,7 @@ class PrairieLearnTest {
         assertEquals(0.2, after.get("score").asDouble(), 1e-12, "2 of all 10 points");
         assertEquals(3, after.get("tests").size());
         assertEquals("box: BoxHiddenTest.secretEdge", after.get("tests").get(2).get("name").asText());
+        assertTrue(after.get("message").asText().contains("did not finish"), after.get("message").asText());
     }
 
     @Test
