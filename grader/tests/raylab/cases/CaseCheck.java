@@ -52,8 +52,22 @@ public final class CaseCheck {
             return;
         }
         if (!hit) {
+            String why = ctx;
+            if (s instanceof Triangle tri && e.has("point")) {
+                // Evidence for the case's hint (about its edge or vertex): the same ray moved to
+                // pass through the centroid. If that misses too, the mistake is elsewhere.
+                Vec3 centroid = tri.a.plus(tri.b).plus(tri.c).times(1.0 / 3);
+                Ray probe = new Ray(ray.p.plus(centroid.minus(vec(e.get("point")))), ray.d, ray.tMin, ray.tMax);
+                if (!Check.intersect(s, new IntersectionRecord(), probe)) {
+                    String edge = Check.edgeHint(tri, centroid);
+                    why = "\n  case:     " + c.path("name").asText() + "\n  surface:  " + Check.describe(s)
+                            + "\n  ray:      " + Check.describe(ray)
+                            + "\n  the same ray moved to pass through the centroid " + centroid + " misses too"
+                            + (edge == null ? "" : "\nHINT: " + edge);
+                }
+            }
             fail("expected a hit" + (e.has("t") ? " at t = " + e.get("t").asDouble() : "")
-                    + " but intersect returned false" + ctx);
+                    + " but intersect returned false" + why);
         }
         if (e.has("t") && !(Math.abs(rec.t - e.get("t").asDouble()) <= tol * Math.max(1, Math.abs(e.get("t").asDouble())))) {
             fail("expected t = " + e.get("t").asDouble() + " but the record has t = " + rec.t + ctx);

@@ -33,11 +33,19 @@ public final class MeshBench {
     private static final float LIGHT_X = 3, LIGHT_Y = 4, LIGHT_Z = 5;
 
     /** Counts of one pass. */
-    public record Pass(double seconds, long rays, long hits, long occluded) {
+    public record Pass(double seconds, long rays, long hits, long occluded, double cpuSeconds) {
         public double mraysPerSecond() {
             return rays / seconds / 1e6;
         }
+
+        /** Rays per second of the tracing threads' CPU time (for a loaded machine). */
+        public double mraysPerCpuSecond() {
+            return rays / cpuSeconds / 1e6;
+        }
     }
+
+    private static final java.lang.management.ThreadMXBean THREADS = java.lang.management.ManagementFactory
+            .getThreadMXBean();
 
     public MeshBench(Surface scene, int width, int height) {
         this.scene = scene;
@@ -105,15 +113,18 @@ public final class MeshBench {
         double seconds = (System.nanoTime() - t0) / 1e9;
         long hits = 0;
         long occluded = 0;
+        long cpu = 0;
         for (long[] c : counts) {
             hits += c[0];
             occluded += c[1];
+            cpu += c[2];
         }
         long rays = (long) width * height + (shadows ? hits : 0);
-        return new Pass(seconds, rays, hits, occluded);
+        return new Pass(seconds, rays, hits, occluded, cpu / 1e9);
     }
 
     private long[] rows(int first, int step, boolean shadows) {
+        long cpu0 = THREADS.getCurrentThreadCpuTime();
         IntersectionRecord rec = new IntersectionRecord();
         IntersectionRecord scratch = new IntersectionRecord();
         Vec3 eye = new Vec3(EYE_X, EYE_Y, EYE_Z);
@@ -141,6 +152,6 @@ public final class MeshBench {
                 }
             }
         }
-        return new long[] {hits, occluded};
+        return new long[] {hits, occluded, THREADS.getCurrentThreadCpuTime() - cpu0};
     }
 }

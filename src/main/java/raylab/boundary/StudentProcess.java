@@ -68,9 +68,12 @@ public final class StudentProcess implements AutoCloseable {
     private final Wire.Out buf = new Wire.Out();
     private RuntimeException pendingFailure;
     // The watchdog's view of the current outermost call.
-    private volatile long callStartCpu = -1;
+    /** The number of the outermost call running (−1: none), for the watchdog. */
+    private volatile long callSeq = -1;
+    private long callCount;
     private volatile long callStartWall;
     private volatile boolean timedOut;
+    private volatile boolean starting;
     private final Thread watchdog;
     private volatile boolean closed;
     private long calls;
@@ -98,20 +101,30 @@ public final class StudentProcess implements AutoCloseable {
     }
 
     private void watch() {
+        long seen = -1;
+        long baseline = 0;
         while (!closed) {
             try {
-                Thread.sleep(20);
+                Thread.sleep(25);
             } catch (InterruptedException e) {
                 return;
             }
-            long start = callStartCpu;
+            long call = callSeq;
             Process p = proc;
-            if (start < 0 || p == null) {
+            if (call < 0 || p == null) {
                 continue;
             }
-            long used = cpuNanos(p) - start;
+            // The CPU time at the first look at a call is its baseline (at most one tick late):
+            // reading /proc at every call would cost more than the call.
+            long cpu = cpuNanos(p);
+            if (call != seen) {
+                seen = call;
+                baseline = starting ? 0 : cpu;
+                continue;
+            }
+            long used = cpu - baseline;
             long wall = System.nanoTime() - callStartWall;
-            long budget = config.callBudgetMillis() * 1_000_000L;
+            long budget = Math.max(starting ? 30_000 : 0, config.callBudgetMillis()) * 1_000_000L;
             // Wall time too, more generously: a student process that sleeps uses no CPU.
             if (used > budget || wall > 3 * budget + 5_000_000_000L) {
                 timedOut = true;
@@ -123,6 +136,12 @@ public final class StudentProcess implements AutoCloseable {
     private static void kill(Process p) {
         p.descendants().forEach(ProcessHandle::destroyForcibly);
         p.destroyForcibly();
+    }
+
+    /** CPU time of the current student process (0 if none runs), for measurements. */
+    public static long cpuNanosOf(StudentProcess s) {
+        Process p = s.proc;
+        return p == null ? 0 : cpuNanos(p);
     }
 
     /** CPU time (user + system) of the process and its descendants, from /proc; 0 where unknown. */
@@ -141,6 +160,17 @@ public final class StudentProcess implements AutoCloseable {
             return Long.parseLong(f[11]) + Long.parseLong(f[12]);
         } catch (IOException | RuntimeException e) {
             return 0;
+        }
+    }
+
+    /** Starts the student process if none is running (a failure shows at the next call). */
+    public synchronized void ensureStarted() {
+        if (proc == null) {
+            try {
+                start();
+            } catch (IOException | RuntimeException e) {
+                dead();
+            }
         }
     }
 
@@ -164,8 +194,9 @@ public final class StudentProcess implements AutoCloseable {
         out = new BufferedOutputStream(proc.getOutputStream(), 1 << 16);
         // The HELLO line: anything else means the JVM did not start as a student server.
         ByteArrayOutputStream line = new ByteArrayOutputStream();
-        callStartCpu = 0;
+        starting = true;
         callStartWall = System.nanoTime();
+        callSeq = ++callCount;
         timedOut = false;
         try {
             for (int b; (b = in.read()) != '\n';) {
@@ -178,7 +209,8 @@ public final class StudentProcess implements AutoCloseable {
                 line.write(b);
             }
         } finally {
-            callStartCpu = -1;
+            callSeq = -1;
+            starting = false;
         }
         if (!line.toString(StandardCharsets.US_ASCII).equals(Wire.HELLO)) {
             dead();
@@ -302,7 +334,7 @@ public final class StudentProcess implements AutoCloseable {
             if (outer) {
                 timedOut = false;
                 callStartWall = System.nanoTime();
-                callStartCpu = cpuNanos(proc);
+                callSeq = ++callCount;
             }
             depth++;
             try {
@@ -313,7 +345,20 @@ public final class StudentProcess implements AutoCloseable {
         } catch (IOException e) {
             boolean slow = timedOut;
             String why = firstLine(stderr);
+            Process p = proc;
+            boolean outOfMemory = false;
+            if (p != null && !slow) {
+                try {
+                    outOfMemory = p.waitFor(2, java.util.concurrent.TimeUnit.SECONDS) && p.exitValue() == 3;
+                } catch (InterruptedException ie) {
+                    Thread.currentThread().interrupt();
+                }
+            }
             dead();
+            if (outOfMemory) {
+                throw new StudentException("java.lang.OutOfMemoryError", "your code ran out of memory (look for"
+                        + " something that grows with every call, such as a list kept in a static field)", List.of(), "");
+            }
             if (slow) {
                 throw new StudentTimeout("your code took longer than " + config.callBudgetMillis() / 1000.0
                         + " s of CPU time for one call and was stopped (an endless loop?)");
@@ -326,7 +371,7 @@ public final class StudentProcess implements AutoCloseable {
                     + (why.isEmpty() ? " (System.exit, running out of memory or a crash)" : ": " + why), List.of(), "");
         } finally {
             if (outer) {
-                callStartCpu = -1;
+                callSeq = -1;
                 ephemeral.clear();
                 ephemeralOf.clear();
                 pendingFailure = null;
@@ -487,18 +532,32 @@ public final class StudentProcess implements AutoCloseable {
         return id;
     }
 
+    private final Map<Class<?>, Class<?>> servedAncestors = new HashMap<>();
+
+    private Class<?> servedAncestor(Class<?> c) {
+        Class<?> r = servedAncestors.computeIfAbsent(c, k -> {
+            for (Class<?> x = k; x != null; x = x.getSuperclass()) {
+                if (config.served().contains(x.getName())) {
+                    return x;
+                }
+            }
+            return Void.class;
+        });
+        return r == Void.class ? null : r;
+    }
+
     /** The handle of a served (stand-in) object, defined in the student process on first use. */
-    private int handle(Object o) {
+    private int handle(Object o, Class<?> as) {
         Integer h = handleOf.get(o);
         if (h != null) {
             return h;
         }
         int id = nextHandle++;
         try {
-            Object[] data = constructorData(o);
+            Object[] data = constructorData(o, as);
             Wire.Out d = new Wire.Out();
             d.writeInt(id);
-            d.writeString(o.getClass().getName());
+            d.writeString(as.getName());
             d.writeInt(data.length);
             for (Object x : data) {
                 Wire.writeValue(d, x, null);
@@ -531,8 +590,8 @@ public final class StudentProcess implements AutoCloseable {
      * known through {@code -parameters}) the public field or accessor of that name, if it is a
      * plain value; null otherwise (a material, a surface: the student process gets none).
      */
-    static Object[] constructorData(Object o) {
-        Constructor<?> k = CONSTRUCTORS.computeIfAbsent(o.getClass(), c -> {
+    static Object[] constructorData(Object o, Class<?> as) {
+        Constructor<?> k = CONSTRUCTORS.computeIfAbsent(as, c -> {
             Constructor<?> best = null;
             for (Constructor<?> x : c.getConstructors()) {
                 if (best == null || x.getParameterCount() > best.getParameterCount()) {
@@ -542,7 +601,7 @@ public final class StudentProcess implements AutoCloseable {
             return best;
         });
         if (k == null) {
-            throw new IllegalArgumentException(o.getClass().getName() + " has no public constructor");
+            throw new IllegalArgumentException(as.getName() + " has no public constructor");
         }
         Parameter[] ps = k.getParameters();
         Object[] data = new Object[ps.length];
@@ -556,7 +615,7 @@ public final class StudentProcess implements AutoCloseable {
                 // Without -parameters: the public instance fields in declaration order stand for
                 // the value parameters, name() for the String one.
                 if (fields == null) {
-                    fields = publicFields(o.getClass());
+                    fields = publicFields(as);
                 }
                 Class<?> t = ps[i].getType();
                 if (t == String.class) {
@@ -652,15 +711,19 @@ public final class StudentProcess implements AutoCloseable {
     private final class Refs implements Wire.Refs {
         @Override
         public boolean encode(Wire.Out o, Object x) {
-            if (config.served().contains(x.getClass().getName())) {
-                int h;
-                try {
-                    h = handle(x);
-                } catch (DefineFailed e) {
-                    throw e;
-                }
+            Class<?> served = servedAncestor(x.getClass());
+            if (served != null) {
+                // A subclass of a served class (the reference BlinnPhong over the stand-in
+                // Lambertian) is the served class there, made from the same data.
                 o.writeByte(Wire.HANDLE);
-                o.writeInt(h);
+                o.writeInt(handle(x, served));
+                return true;
+            }
+            if (x instanceof PointLight l) {
+                // By value, with a number: the same light comes back as the grader's own object.
+                o.writeByte(Wire.LIGHT_REF);
+                o.writeInt(ephemeral(l));
+                Wire.writeValue(o, new PointLight(l.position, l.intensity, l.castsShadows, l.name), null);
                 return true;
             }
             if (x instanceof Surface s) {
@@ -708,6 +771,7 @@ public final class StudentProcess implements AutoCloseable {
                 }
                 case Wire.REMOTE_SURFACE:
                 case Wire.REMOTE_MATERIAL:
+                case Wire.LIGHT_REF:
                     if (id < 1 || id > ephemeral.size()) {
                         throw new Wire.ProtocolException("unknown object " + id);
                     }

@@ -59,7 +59,7 @@ public final class BenchCommand implements Callable<Integer> {
     @Option(names = "--threads", split = ",", paramLabel = "N[,N...]",
             description = {"Render threads (default: all cores, ${DEFAULT-VALUE}).",
                 "Several counts (such as 1,2) are timed in turns, run by run, and each is compared with the first:",
-                "speed-up as the median of the paired run ratios with a bootstrap 95% interval."})
+                "speed-up as the median of the paired run ratios with a bootstrap 95%% interval."})
     List<Integer> threadCounts = new ArrayList<>(List.of(Runtime.getRuntime().availableProcessors()));
 
     @Override
@@ -164,6 +164,8 @@ public final class BenchCommand implements Callable<Integer> {
         }
         double[][] primary = new double[k][runs];
         double[][] withShadows = new double[k][runs];
+        double[][] primaryCpu = new double[k][runs];
+        double[][] withShadowsCpu = new double[k][runs];
         MeshBench.Pass p = null;
         MeshBench.Pass ps = null;
         for (int r = 0; r < runs; r++) {
@@ -172,6 +174,8 @@ public final class BenchCommand implements Callable<Integer> {
                 ps = bench.run(threadCounts.get(c), true);
                 primary[c][r] = p.mraysPerSecond();
                 withShadows[c][r] = ps.mraysPerSecond();
+                primaryCpu[c][r] = p.mraysPerCpuSecond();
+                withShadowsCpu[c][r] = ps.mraysPerCpuSecond();
             }
         }
         for (int c = 0; c < k; c++) {
@@ -179,11 +183,17 @@ public final class BenchCommand implements Callable<Integer> {
             double[] ss = withShadows[c].clone();
             Arrays.sort(sp);
             Arrays.sort(ss);
-            String scaling = "";
+            double[] cp = primaryCpu[c].clone();
+            double[] cs = withShadowsCpu[c].clone();
+            Arrays.sort(cp);
+            Arrays.sort(cs);
+            String scaling = String.format(",\"cpu_primary_median\":%.2f,\"cpu_primary_min\":%.2f,\"cpu_primary_max\":%.2f,"
+                    + "\"cpu_shadow_median\":%.2f,\"cpu_shadow_min\":%.2f,\"cpu_shadow_max\":%.2f", median(cp), cp[0],
+                    cp[runs - 1], median(cs), cs[0], cs[runs - 1]);
             if (c > 0) {
                 // Throughputs: the speed-up is the ratio of c's rate to the first count's, pass by pass.
                 double[] ratio = PairedRatio.of(primary[c], primary[0], SEED);
-                scaling = String.format(",\"speedup_over_%d_threads\":%.2f,\"speedup_low\":%.2f,\"speedup_high\":%.2f",
+                scaling += String.format(",\"speedup_over_%d_threads\":%.2f,\"speedup_low\":%.2f,\"speedup_high\":%.2f",
                         threadCounts.get(0), ratio[0], ratio[1], ratio[2]);
             }
             out.printf("{\"triangles\":%d,\"threads\":%d,\"build_ms\":%.1f,\"primary_mrays_s\":%.2f,"

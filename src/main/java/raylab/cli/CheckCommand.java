@@ -39,9 +39,17 @@ public final class CheckCommand implements Callable<Integer> {
             description = "Also write Classroom 50's result.json to FILE (what its autograder.py runs).")
     Path classroom50;
 
+    @Option(names = "--watch", description = "Run again after every save of one of your files (clearing the screen"
+            + " each time); Ctrl-C stops.")
+    boolean watch;
+
     @Override
     public Integer call() throws Exception {
         PrintWriter out = spec.commandLine().getOut();
+        if (watch) {
+            return Watch.run(out, Watch.without(spec.commandLine().getParseResult().originalArgs().toArray(String[]::new)),
+                    List.of());
+        }
         Path root = Path.of("").toAbsolutePath();
         if (threads < 1) {
             throw UserError.badInput("--threads must be at least 1, got " + threads);
@@ -104,7 +112,8 @@ public final class CheckCommand implements Callable<Integer> {
             }
         }
         for (MilestoneCheck.SceneOutcome s : o.scenes()) {
-            lines.add("  " + (s.matches() ? "match " : "scene ") + s.scene().scene() + ": " + oneLine(s.message()));
+            lines.add("  " + sceneWord(s) + " " + s.scene().scene() + ": "
+                    + oneLine(s.message()).replaceFirst("^(MATCH|DIFFERS): ", ""));
         }
         if (!lines.isEmpty()) {
             out.println(o.assignment().id() + ":");
@@ -125,8 +134,8 @@ public final class CheckCommand implements Callable<Integer> {
         out.println(o.assignment().id() + ": points you can check here (the autograder gives the same)");
         for (MilestoneCheck.Outcome.Row r : rows) {
             raylab.course.GradingPlan.Item i = r.item();
-            String status = i.kind() == raylab.course.GradingPlan.Kind.SCENE ? (r.passed() ? "match" : "DIFF ")
-                    : (r.passed() ? "pass " : "FAIL ");
+            String status = i.kind() == raylab.course.GradingPlan.Kind.SCENE ? (r.passed() ? "MATCH  " : "DIFFERS")
+                    : (r.passed() ? "pass   " : "FAIL   ");
             String pts = raylab.course.GradingPlan.points(r.passed() ? i.cents() : 0) + "/"
                     + raylab.course.GradingPlan.points(i.cents());
             String name = switch (i.kind()) {
@@ -145,6 +154,16 @@ public final class CheckCommand implements Callable<Integer> {
         out.println();
     }
 
+    /** MATCH, DIFFERS, or why the scene has no picture to compare (the same words as render --compare). */
+    static String sceneWord(MilestoneCheck.SceneOutcome s) {
+        return switch (s.status()) {
+            case MATCH -> "MATCH  ";
+            case DIFFERS -> "DIFFERS";
+            case NOT_IMPLEMENTED -> "NOT IMPLEMENTED";
+            case ERROR -> "ERROR  ";
+        };
+    }
+
     private static String oneLine(String s) {
         String t = s == null ? "" : s.strip();
         int nl = t.indexOf('\n');
@@ -153,13 +172,26 @@ public final class CheckCommand implements Callable<Integer> {
     }
 
     static void printTable(PrintWriter out, List<MilestoneCheck.Outcome> outcomes) {
-        String fmt = "%-10s %-14s %-16s %s%n";
+        String fmt = "%-10s %-14s %-16s %-15s %s%n";
         out.println();
-        out.printf(fmt, "milestone", "tests passed", "scenes matching", "next");
+        out.printf(fmt, "milestone", "tests passed", "scenes matching", "visible points", "next");
+        long earned = 0;
+        long visible = 0;
         for (MilestoneCheck.Outcome o : outcomes) {
             String tests = o.problem().isEmpty() || !o.tests().isEmpty()
                     ? o.testsPassed() + "/" + o.testCount() : "-";
-            out.printf(fmt, o.assignment().id(), tests, o.scenesMatching() + "/" + o.scenes().size(), o.nextStep());
+            String points = o.plan() == null ? "-" : raylab.course.GradingPlan.points(o.earnedCents()) + "/"
+                    + raylab.course.GradingPlan.points(o.plan().visibleCents());
+            if (o.plan() != null) {
+                earned += o.earnedCents();
+                visible += o.plan().visibleCents();
+            }
+            out.printf(fmt, o.assignment().id(), tests, o.scenesMatching() + "/" + o.scenes().size(), points,
+                    o.nextStep());
         }
+        out.println("visible total: " + raylab.course.GradingPlan.points(earned) + " / "
+                + raylab.course.GradingPlan.points(visible) + " points"
+                + (outcomes.size() > 1 ? " (" + outcomes.size() + " milestones)" : "")
+                + "; hidden tests and data cases are graded after you submit");
     }
 }

@@ -73,8 +73,11 @@ final class ContractCheck {
     }
 
     /**
-     * Asks each primitive of the scene in turn, as a group does, and prints those the ray meets
-     * (or that break a rule), each with the rules it breaks.
+     * Asks each primitive of the scene in turn, as a group does, and prints every one's answer:
+     * a hit at t (with the rules it breaks), an exception, or a miss and what made it one (the
+     * same intersect asked again over all t: a hit before tMin or beyond tMax, farther than the
+     * hit already recorded, t = NaN, or no hit at all), and when the ray lies in a box face's
+     * plane (a slab) or in a triangle's plane.
      */
     static void walk(List<Surface> surfaces, Ray ray, PrintWriter out) {
         List<Surface> leaves = new ArrayList<>();
@@ -82,25 +85,36 @@ final class ContractCheck {
             flatten(s, leaves);
         }
         IntersectionRecord rec = new IntersectionRecord();
-        List<String> lines = new ArrayList<>();
+        List<String> answers = new ArrayList<>();
+        List<String> misses = new ArrayList<>();
+        List<String> inTurn = new ArrayList<>();
         int broken = 0;
+        java.util.List<String> files = null;
         for (Surface s : leaves) {
             IntersectionRecord before = new IntersectionRecord();
             before.copyFrom(rec);
             boolean returned;
+            String plane = planeNote(s, ray);
             try {
                 returned = s.intersect(rec, ray);
-            } catch (RuntimeException e) {
-                if (e instanceof raylab.course.NotImplemented) {
-                    throw e;
+            } catch (RuntimeException | StackOverflowError e) {
+                if (e instanceof raylab.course.NotImplemented n) {
+                    throw n;
                 }
-                lines.add("    \"" + s.name() + "\": threw " + e + flag("intersect must not throw"));
+                if (files == null) {
+                    files = StudentFault.studentFiles(java.nio.file.Path.of("").toAbsolutePath());
+                }
+                inTurn.add("    \"" + s.name() + "\": " + StudentFault.describe(e, files, "").orElse("threw " + e)
+                        + flag("intersect must not throw") + plane);
+                answers.add(inTurn.get(inTurn.size() - 1));
                 broken++;
                 continue;
             }
             boolean wrote = Double.compare(rec.t, before.t) != 0 || rec.point != before.point || rec.normal != before.normal
                     || rec.surface != before.surface;
             if (!returned && !wrote) {
+                inTurn.add("    \"" + s.name() + "\": miss (" + whyMissed(s, ray, before) + ")" + plane);
+                misses.add(inTurn.get(inTurn.size() - 1));
                 continue;
             }
             List<String> rules = new ArrayList<>();
@@ -131,23 +145,95 @@ final class ContractCheck {
                 }
             }
             broken += rules.isEmpty() ? 0 : 1;
-            String what = wrote ? "recorded t = " + TraceCommand.num(rec.t) + ", normal " + TraceCommand.v(rec.normal == null
+            String what = wrote ? "hit at t = " + TraceCommand.num(rec.t) + ", normal " + TraceCommand.v(rec.normal == null
                     ? new Vec3(Double.NaN, Double.NaN, Double.NaN) : rec.normal) : "returned true";
             StringBuilder line = new StringBuilder("    \"" + s.name() + "\": " + what);
             for (int i = 0; i < rules.size(); i++) {
                 line.append(i == 0 ? flag(rules.get(i)) : "; " + rules.get(i));
             }
-            lines.add(line.toString());
-        }
-        if (lines.isEmpty()) {
-            return;
+            inTurn.add(line.append(plane).toString());
+            answers.add(inTurn.get(inTurn.size() - 1));
         }
         out.println("  surfaces asked in turn, as a group does (" + leaves.size() + ")" + (broken == 0
                 ? ": every rule of intersect holds" : ": " + broken + " broke a rule of intersect"));
-        lines.stream().limit(MAX_LINES).forEach(out::println);
-        if (lines.size() > MAX_LINES) {
-            out.println("    ... and " + (lines.size() - MAX_LINES) + " more");
+        if (inTurn.size() <= MAX_LINES) {
+            inTurn.forEach(out::println); // in the order asked
+            return;
         }
+        // Many (a mesh): every hit and exception, then the first misses.
+        List<String> lines = new ArrayList<>(answers);
+        lines.addAll(misses);
+        int shown = Math.max(MAX_LINES, answers.size());
+        lines.stream().limit(shown).forEach(out::println);
+        out.println("    ... and " + (lines.size() - shown) + " more misses");
+    }
+
+    /**
+     * Why a surface returned false: its own intersect asked again with t over (-∞, ∞) and an
+     * empty record says where its hit would be.
+     */
+    static String whyMissed(Surface s, Ray ray, IntersectionRecord held) {
+        IntersectionRecord probe = new IntersectionRecord();
+        boolean hit;
+        try {
+            hit = s.intersect(probe, new Ray(ray.p, ray.d, Double.NEGATIVE_INFINITY, Double.POSITIVE_INFINITY));
+        } catch (RuntimeException | StackOverflowError e) {
+            return "asked over all t, it throws " + e.getClass().getSimpleName();
+        }
+        if (Double.isNaN(probe.t)) {
+            return "asked over all t, it records t = NaN";
+        }
+        if (!hit) {
+            return "the line of the ray does not meet it";
+        }
+        double t = probe.t;
+        if (t < ray.tMin) {
+            return "its nearest hit over all t is at t = " + TraceCommand.num(t) + ", before tMin = "
+                    + TraceCommand.num(ray.tMin);
+        }
+        if (t > ray.tMax) {
+            return "its nearest hit over all t is at t = " + TraceCommand.num(t) + ", beyond tMax = "
+                    + TraceCommand.num(ray.tMax);
+        }
+        if (held.hasHit() && t >= held.t) {
+            return "its hit at t = " + TraceCommand.num(t) + " is not closer than the recorded t = "
+                    + TraceCommand.num(held.t) + " on \"" + held.surface.name() + "\"";
+        }
+        return "although asked over all t it hits at t = " + TraceCommand.num(t) + ", inside [tMin, tMax]";
+    }
+
+    /** "; the ray lies in the plane x = 1 of a face (a slab with d.x = 0)" and the like, or "". */
+    static String planeNote(Surface s, Ray ray) {
+        if (s instanceof raylab.surface.Box b) {
+            StringBuilder note = new StringBuilder();
+            String[] axis = {"x", "y", "z"};
+            for (int i = 0; i < 3; i++) {
+                if (ray.d.get(i) != 0) {
+                    continue;
+                }
+                double p = ray.p.get(i);
+                String n = axis[i];
+                if (p == b.min.get(i) || p == b.max.get(i)) {
+                    note.append("; the ray lies in the plane ").append(n).append(" = ").append(TraceCommand.num(p))
+                            .append(" of a face: in the slab of ").append(n).append(", d.").append(n)
+                            .append(" = 0 and p.").append(n).append(" is on its boundary (0/0 = NaN)");
+                } else if (p < b.min.get(i) || p > b.max.get(i)) {
+                    note.append("; d.").append(n).append(" = 0 and p.").append(n).append(" = ")
+                            .append(TraceCommand.num(p)).append(" lies outside the slab of ").append(n)
+                            .append(": the ray never enters it");
+                }
+            }
+            return note.toString();
+        }
+        if (s instanceof raylab.surface.Triangle tr) {
+            Vec3 n = tr.b.minus(tr.a).cross(tr.c.minus(tr.a));
+            if (n.dot(ray.d) != 0) {
+                return "";
+            }
+            return n.dot(ray.p.minus(tr.a)) == 0 ? "; the ray lies in the triangle's plane (n·d = 0 and n·(p - a) = 0)"
+                    : "; the ray is parallel to the triangle's plane (n·d = 0)";
+        }
+        return "";
     }
 
     private static void flatten(Surface s, List<Surface> out) {

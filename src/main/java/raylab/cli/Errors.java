@@ -39,6 +39,12 @@ final class Errors implements IExecutionExceptionHandler {
             err.println("raylab: " + oneLine(t.getMessage()));
             return Main.FAILED;
         }
+        java.util.Optional<String> students = StudentFault.describe(t,
+                StudentFault.studentFiles(java.nio.file.Path.of("").toAbsolutePath()), "");
+        if (students.isPresent()) {
+            err.println("raylab: " + students.get());
+            return Main.FAILED;
+        }
         err.println("raylab: internal error: " + t.getClass().getSimpleName() + ": " + oneLine(t.getMessage())
                 + frames(t) + " (RAYLAB_DEBUG=1 shows the stack trace)");
         return Main.FAILED;

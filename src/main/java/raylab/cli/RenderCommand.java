@@ -3,6 +3,7 @@ package raylab.cli;
 import java.awt.image.BufferedImage;
 import java.io.PrintWriter;
 import java.nio.file.Path;
+import java.util.List;
 import java.util.concurrent.Callable;
 
 import picocli.CommandLine.Command;
@@ -74,9 +75,17 @@ public final class RenderCommand implements Callable<Integer> {
     @Option(names = {"-q", "--quiet"}, description = "Print only errors and the comparison result.")
     boolean quiet;
 
+    @Option(names = "--watch", description = "Run again after every save of one of your files (clearing the screen"
+            + " each time, also after a save of the scene; the image in out/ stays fresh); Ctrl-C stops.")
+    boolean watch;
+
     @Override
     public Integer call() throws Exception {
         PrintWriter out = spec.commandLine().getOut();
+        if (watch) {
+            return Watch.run(out, Watch.without(spec.commandLine().getParseResult().originalArgs().toArray(String[]::new)),
+                    List.of(scenePath.toAbsolutePath()));
+        }
         if (threads < 1) {
             throw UserError.badInput("--threads must be at least 1, got " + threads);
         }
@@ -132,6 +141,8 @@ public final class RenderCommand implements Callable<Integer> {
         Image image;
         try (Progress progress = Progress.start(scene, Renderer.TILE)) {
             image = renderer.render(threads, progress::tileDone);
+        } catch (RuntimeException | StackOverflowError e) {
+            throw studentsOrRethrow(e, renderer, scene, mode, scenePath);
         }
         long t1 = System.nanoTime();
         BufferedImage picture = image.toBufferedImage();
@@ -151,6 +162,49 @@ public final class RenderCommand implements Callable<Integer> {
                 match ? "MATCH" : "DIFFERS", result.summary(), Display.path(diff),
                 String.format(java.util.Locale.ROOT, "%.3f%%", 100 * tolerance), toleranceSource);
         return match ? Main.OK : Main.FAILED;
+    }
+
+    /**
+     * An exception from the student's code as a one-line user error naming the first pixel (in
+     * scan order) where it happens; any other exception as it is.
+     */
+    static RuntimeException studentsOrRethrow(Throwable e, Renderer renderer, Scene scene, Mode mode, Path scenePath) {
+        List<String> files = StudentFault.studentFiles(Path.of("").toAbsolutePath());
+        if (!StudentFault.isStudents(e, files)) {
+            if (e instanceof RuntimeException re) {
+                throw re;
+            }
+            throw (Error) e;
+        }
+        int[] at = failingPixel(renderer, scene, mode, e.getClass(), 10_000_000_000L);
+        String context = (at == null ? "while rendering " : "while tracing pixel (" + at[0] + ", " + at[1] + ") of ")
+                + Display.path(scenePath);
+        return new UserError(StudentFault.describe(e, files, context).orElseThrow()
+                + (at == null ? "" : "; ./raylab trace " + Display.path(scenePath) + " --pixel " + at[0] + " " + at[1]
+                        + " shows that ray"), Main.FAILED);
+    }
+
+    /** The first pixel, row by row, whose colour throws {@code type}, or null (none within the time budget). */
+    static int[] failingPixel(Renderer renderer, Scene scene, Mode mode, Class<?> type, long budgetNanos) {
+        long start = System.nanoTime();
+        raylab.render.Shader shader = new raylab.render.Shader(scene, renderer.root(), renderer.plan(), mode);
+        raylab.ray.IntersectionRecord rec = new raylab.ray.IntersectionRecord();
+        RenderStats stats = new RenderStats();
+        for (int y = 0; y < scene.height; y++) {
+            for (int x = 0; x < scene.width; x++) {
+                try {
+                    renderer.pixel(x, y, shader, rec, stats);
+                } catch (RuntimeException | StackOverflowError again) {
+                    if (again.getClass() == type) {
+                        return new int[] {x, y};
+                    }
+                }
+            }
+            if (System.nanoTime() - start > budgetNanos) {
+                return null;
+            }
+        }
+        return null;
     }
 
     private static void printCounters(PrintWriter out, Renderer r, long loadNanos, long writeNanos) {

@@ -29,7 +29,8 @@ import raylab.scene.Scene;
 import raylab.scene.SceneLoader;
 
 /** {@code raylab trace SCENE.json --pixel X Y}: the ray tree of one pixel, step by step. */
-@Command(name = "trace", mixinStandardHelpOptions = true,
+@Command(name = "trace", mixinStandardHelpOptions = true, separator = " ",
+        customSynopsis = "raylab trace [-hV] --pixel X Y SCENE.json",
         description = {"Print the ray tree of one pixel, step by step.",
             "The eye ray, its hit, each light's shadow ray and shading terms, and the final colour. Pixel (0, 0) is the top-left corner.",
             "A broken rule of intersect (t outside [tMin, tMax], a farther hit over a closer one, a normal not unit length or",
@@ -41,7 +42,7 @@ public final class TraceCommand implements Callable<Integer> {
     @Parameters(index = "0", paramLabel = "SCENE.json", description = "The scene file.")
     Path scenePath;
 
-    @Option(names = "--pixel", arity = "2", required = true, paramLabel = "X Y",
+    @Option(names = "--pixel", arity = "2", required = true, paramLabel = "X Y", hideParamSyntax = true,
             description = "Column and row of the pixel, from the top-left corner.")
     int[] pixel;
 
@@ -55,6 +56,20 @@ public final class TraceCommand implements Callable<Integer> {
             throw UserError.badInput("pixel (" + x + ", " + y + ") is outside the " + scene.width + "x"
                     + scene.height + " image of " + scenePath);
         }
+        try {
+            return trace(out, scene, x, y);
+        } catch (RuntimeException | StackOverflowError e) {
+            java.util.List<String> files = StudentFault.studentFiles(Path.of("").toAbsolutePath());
+            if (!StudentFault.isStudents(e, files)) {
+                throw e;
+            }
+            out.flush();
+            throw new UserError(StudentFault.describe(e, files, "while tracing pixel (" + x + ", " + y + ") of "
+                    + raylab.scene.Display.path(scenePath)).orElseThrow(), Main.FAILED);
+        }
+    }
+
+    private int trace(PrintWriter out, Scene scene, int x, int y) {
         RenderPlan plan = new RenderPlan(scene);
         Renderer renderer = new Renderer(scene, plan, Mode.FULL);
         Shader shader = new Shader(scene, renderer.root(), plan, Mode.FULL);

@@ -64,7 +64,7 @@ public final class TestLauncher {
      */
     public static List<TestResult> discover(List<Path> classPath, Path testClasses, List<String> tags,
             List<String> classes, Path workDir) throws IOException {
-        Outcome o = launch(classPath, testClasses, tags, classes, Limits.DEFAULT, workDir, true, List.of(), List.of());
+        Outcome o = launch(classPath, testClasses, tags, classes, Limits.DEFAULT, workDir, true, List.of(), List.of(), List.of());
         if (!o.finished()) {
             throw new IOException("test discovery failed: " + o.problem());
         }
@@ -77,7 +77,7 @@ public final class TestLauncher {
      */
     public static Outcome run(List<Path> classPath, Path testClasses, List<String> tags, List<String> classes,
             Limits limits, Path workDir, List<TestResult> expected) throws IOException {
-        return launch(classPath, testClasses, tags, classes, limits, workDir, false, expected, List.of());
+        return launch(classPath, testClasses, tags, classes, limits, workDir, false, expected, List.of(), List.of());
     }
 
     /**
@@ -86,15 +86,27 @@ public final class TestLauncher {
      */
     public static Outcome run(List<Path> classPath, Path testClasses, List<String> tags, List<String> classes,
             Limits limits, Path workDir, List<TestResult> expected, List<String> wrapper) throws IOException {
-        return launch(classPath, testClasses, tags, classes, limits, workDir, false, expected, wrapper);
+        return launch(classPath, testClasses, tags, classes, limits, workDir, false, expected, wrapper, List.of());
+    }
+
+    /**
+     * As {@link #run}, with more options for the child JVM ({@code -Dname=value}), for example the
+     * student process of the grader's process ({@code raylab.boundary}).
+     */
+    public static Outcome run(List<Path> classPath, Path testClasses, List<String> tags, List<String> classes,
+            Limits limits, Path workDir, List<TestResult> expected, List<String> wrapper, List<String> jvmOptions)
+            throws IOException {
+        return launch(classPath, testClasses, tags, classes, limits, workDir, false, expected, wrapper, jvmOptions);
     }
 
     private static Outcome launch(List<Path> classPath, Path testClasses, List<String> tags, List<String> classes,
-            Limits limits, Path workDir, boolean list, List<TestResult> expected, List<String> wrapper)
-            throws IOException {
+            Limits limits, Path workDir, boolean list, List<TestResult> expected, List<String> wrapper,
+            List<String> jvmOptions) throws IOException {
         String java = Path.of(System.getProperty("java.home"), "bin", "java").toString();
         List<String> cmd = new ArrayList<>(wrapper);
-        cmd.addAll(List.of(java, "-Xmx" + limits.heapMegabytes() + "m", "-Xss1m",
+        cmd.add(java);
+        cmd.addAll(jvmOptions);
+        cmd.addAll(List.of("-Xmx" + limits.heapMegabytes() + "m", "-Xss1m",
                 "-XX:+UseSerialGC", "-XX:TieredStopAtLevel=1", "-Djava.awt.headless=true",
                 "-XX:+DisableAttachMechanism", "-XX:-UsePerfData", "--limit-modules", CHILD_MODULES,
                 "-Dfile.encoding=UTF-8", "-cp",

@@ -85,6 +85,14 @@ public final class TestMain {
                 default -> throw new IllegalArgumentException("unknown argument " + args[i]);
             }
         }
+        // In the grader's process: start the student process before the first test's clock runs.
+        if (System.getProperty("raylab.boundary") != null && !list) {
+            try {
+                Class.forName("raylab.boundary.Remote").getMethod("warmUp").invoke(null);
+            } catch (ReflectiveOperationException | RuntimeException e) {
+                // the first call starts it, or reports why it cannot
+            }
+        }
         CappedBuffer captured = new CappedBuffer(cap);
         PrintStream capture = new PrintStream(captured, true, StandardCharsets.UTF_8);
         System.setOut(capture);

@@ -114,6 +114,7 @@ final class Cgroups {
                 }
                 try {
                     Files.createDirectories(parent);
+                    removeStale(parent);
                     Path d = parent.resolve(name);
                     Files.createDirectory(d);
                     made.add(d);
@@ -134,6 +135,29 @@ final class Cgroups {
             return null;
         }
         return new Group(made);
+    }
+
+    /**
+     * Groups a grader left when it was killed: empty (the kernel refuses to remove any other)
+     * and older than ten minutes (a group another grading made a moment ago is still empty).
+     */
+    private static void removeStale(Path parent) {
+        long old = System.currentTimeMillis() - 600_000;
+        try (var s = Files.list(parent)) {
+            for (Path d : (Iterable<Path>) s::iterator) {
+                try {
+                    if (d.getFileName().toString().startsWith("box") && Files.isDirectory(d)
+                            && Files.getLastModifiedTime(d).toMillis() < old
+                            && Files.readString(d.resolve("cgroup.procs")).isBlank()) {
+                        Files.delete(d);
+                    }
+                } catch (IOException | RuntimeException e) {
+                    // in use, or gone
+                }
+            }
+        } catch (IOException e) {
+            // nothing to clean
+        }
     }
 
     /** One core's worth per child where there are at least two (else only the fair share). */

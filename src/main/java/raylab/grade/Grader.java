@@ -84,6 +84,16 @@ public final class Grader {
         }
     }
 
+    /**
+     * Whether student code runs behind the process boundary (system property
+     * {@code raylab.grade.boundary=true}; grader/README.md "The process boundary"): the tests and
+     * renders run in a trusted JVM whose stand-ins call the student process. Off by default until
+     * renders are batched (a full submission is too slow with one call per intersection).
+     */
+    static boolean processBoundary() {
+        return Boolean.getBoolean("raylab.grade.boundary");
+    }
+
     private final Options options;
     private final Consumer<String> log;
     private List<Assignment> allAssignments = List.of();
@@ -317,11 +327,23 @@ public final class Grader {
         List<String> visibleClasses = classes.stream().filter(c -> kindOf(a, c) == Kind.VISIBLE
                 || c.equals(DataCases.visibleClassName(a.id()))).toList();
         List<String> hiddenClasses = classes.stream().filter(c -> !visibleClasses.contains(c)).toList();
-        runTests(a, false, visibleClasses, expected, layers, setup, mdir, sandbox, got, notes);
-        runTests(a, true, hiddenClasses, expected, layers, setup, mdir, sandbox, got, notes);
+        // The grader's process: the stand-ins of M's classes (their graded methods call the student
+        // process), the other milestones' references, the framework.
+        List<Path> trusted = new ArrayList<>();
+        trusted.add(setup.standIns.get(a.id()));
+        trusted.addAll(below);
+        boolean boundary = processBoundary();
+        if (boundary) {
+            runTests(a, false, visibleClasses, expected, trusted, overlay, setup, mdir, sandbox, got, notes);
+            runTests(a, true, hiddenClasses, expected, trusted, overlay, setup, mdir, sandbox, got, notes);
+        } else {
+            runTestsInBox(a, false, visibleClasses, expected, layers, setup, mdir, sandbox, got, notes);
+            runTestsInBox(a, true, hiddenClasses, expected, layers, setup, mdir, sandbox, got, notes);
+        }
         tests.addAll(scoreTests(a, setup, plan(a), expected, got));
         // Scenes.
-        tests.addAll(gradeScenes(a, layers, setup, mdir, scenesCopy, sandbox));
+        tests.addAll(boundary ? gradeScenes(a, trusted, overlay, setup, mdir, scenesCopy, sandbox)
+                : gradeScenesInBox(a, layers, setup, mdir, scenesCopy, sandbox));
         return new GradeReport.Milestone(a.id(), a.title(), notes.stream().map(this::withheld).toList(),
                 tests.stream().map(this::withheld).toList());
     }
@@ -414,8 +436,87 @@ public final class Grader {
         return render || n.matches("\\d+-(junit|opentest4j|apiguardian|jackson).*");
     }
 
-    /** Runs some of M's test classes in one child JVM in its own box; the results go into {@code got}. */
+    /**
+     * The student process's box: the student's classes of M, the public stubs of the other
+     * student files and the public framework (as the starter has it); nothing else (no
+     * reference, no test, no grader class).
+     */
+    private Sandbox.Box studentBox(Assignment a, Path overlay, GraderSetup setup, Path mdir, Sandbox sandbox)
+            throws IOException {
+        List<String> mine = a.files().stream().map(f -> GraderSetup.classPrefix(f.path())).toList();
+        return sandbox.box(mdir, List.of(overlay, setup.publicStubs, setup.publicFramework), (entry, rel) ->
+                !entry.equals(setup.publicStubs) || mine.stream().noneMatch(x -> GraderSetup.isClassOf(rel, x)));
+    }
+
+    /** How the grader's process starts the student process in {@code box}, with a CPU budget per call. */
+    private raylab.boundary.StudentProcess.Config studentConfig(Assignment a, Sandbox.Box box, Path overlay,
+            long budgetMillis, int heapMb) throws IOException {
+        java.util.Set<String> students = new java.util.TreeSet<>();
+        try (Stream<Path> s = Files.walk(overlay)) {
+            for (Path p : (Iterable<Path>) s.filter(f -> f.toString().endsWith(".class"))::iterator) {
+                String rel = overlay.relativize(p).toString().replace('\\', '/');
+                students.add(GraderSetup.outer(rel.substring(0, rel.length() - 6).replace('/', '.')));
+            }
+        }
+        List<String> cmd = new ArrayList<>(box.wrapper());
+        cmd.addAll(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(), "-Xmx" + heapMb + "m",
+                "-Xss4m", "-XX:+UseSerialGC", "-XX:+ExitOnOutOfMemoryError", "-Djava.awt.headless=true",
+                "-XX:+DisableAttachMechanism", "-XX:-UsePerfData", "--limit-modules", TestLauncher.CHILD_MODULES,
+                "-Dfile.encoding=UTF-8", "-cp", String.join(java.io.File.pathSeparator, box.classPath()),
+                "raylab.remote.StudentServer"));
+        for (String c : students) {
+            cmd.add("--student");
+            cmd.add(c);
+        }
+        return new raylab.boundary.StudentProcess.Config(cmd, box.run(),
+                java.util.Set.copyOf(GraderSetup.servedClasses(a)), budgetMillis, 3);
+    }
+
+    /**
+     * Runs some of M's test classes in the grader's process (a JVM of trusted code: tests,
+     * stand-ins, references) whose stand-ins call the student process in its box; the results go
+     * into {@code got}.
+     */
     private void runTests(Assignment a, boolean hidden, List<String> classes, List<TestResult> allExpected,
+            List<Path> trusted, Path overlay, GraderSetup setup, Path mdir, Sandbox sandbox,
+            Map<String, TestResult> got, List<String> notes) throws IOException {
+        java.util.Set<String> mine = new java.util.HashSet<>(classes);
+        List<TestResult> expected = allExpected.stream().filter(e -> mine.contains(GraderSetup.outer(e.className())))
+                .toList();
+        if (expected.isEmpty()) {
+            return;
+        }
+        List<Path> cp = new ArrayList<>();
+        cp.add(setup.tests); // the grader's tests first
+        for (Path p : trusted) {
+            if (!setup.libraries.contains(p) || libraryFor(p, false)) {
+                cp.add(p);
+            }
+        }
+        Sandbox.Box box = studentBox(a, overlay, setup, mdir, sandbox);
+        Path dir = Files.createTempDirectory(mdir, hidden ? "hidden" : "visible");
+        try {
+            Path config = dir.resolve("student.properties");
+            raylab.boundary.Remote.writeConfig(config, studentConfig(a, box, overlay,
+                    options.limits().perTestSeconds() * 1000L, options.limits().heapMegabytes()));
+            TestLauncher.Outcome o = TestLauncher.run(cp, setup.tests, List.of(), classes, options.limits(), dir,
+                    expected, List.of(), List.of("-Draylab.boundary=" + config));
+            for (TestResult r : o.results()) {
+                got.put(r.id(), r);
+            }
+            if (!o.finished() && !o.problem().isEmpty()) {
+                // What went wrong in the hidden run is named on the hidden tests only (their visibility).
+                notes.add(hidden ? "the hidden tests' run did not finish (see the hidden tests)"
+                        : "the test run did not finish: " + o.problem());
+            }
+        } finally {
+            sandbox.finish(box, null);
+            GraderSetup.deleteTree(dir);
+        }
+    }
+
+    /** Runs some of M's test classes in one child JVM in its own box; the results go into {@code got}. */
+    private void runTestsInBox(Assignment a, boolean hidden, List<String> classes, List<TestResult> allExpected,
             List<Path> layers, GraderSetup setup, Path mdir, Sandbox sandbox, Map<String, TestResult> got,
             List<String> notes) throws IOException {
         java.util.Set<String> mine = new java.util.HashSet<>(classes);
@@ -685,8 +786,142 @@ public final class Grader {
         return invocation == null ? base : "[" + invocation + "] " + base;
     }
 
+    /**
+     * Renders the milestone's scenes in the grader's process (stand-ins calling the student
+     * process in its box; the PNGs are encoded there) and compares each with its reference.
+     */
+    private List<GradeReport.Test> gradeScenes(Assignment a, List<Path> trusted, Path overlay, GraderSetup setup,
+            Path mdir, Path scenesCopy, Sandbox sandbox) throws IOException {
+        List<GradeReport.Test> out = new ArrayList<>();
+        if (a.scenes().isEmpty()) {
+            return out;
+        }
+        Path root = options.root().toAbsolutePath();
+        List<Path> cp = new ArrayList<>();
+        for (Path p : trusted) {
+            if (!setup.libraries.contains(p) || libraryFor(p, true)) {
+                cp.add(p);
+            }
+        }
+        Sandbox.Box box = studentBox(a, overlay, setup, mdir, sandbox);
+        Path dir = Files.createTempDirectory(mdir, "render");
+        Path config = dir.resolve("student.properties");
+        raylab.boundary.Remote.writeConfig(config, studentConfig(a, box, overlay, options.sceneLimit().toMillis(),
+                options.sceneHeapMb()));
+        List<String> cmd = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
+                "-Xmx" + options.sceneHeapMb() + "m", "-XX:+ExitOnOutOfMemoryError", "-Djava.awt.headless=true",
+                "-XX:+DisableAttachMechanism", "-XX:-UsePerfData", "--limit-modules", TestLauncher.CHILD_MODULES,
+                "-Draylab.boundary=" + config, "-cp", String.join(java.io.File.pathSeparator,
+                        cp.stream().map(Path::toString).toList()), "raylab.boundary.TrustedRender"));
+        List<Path> pngs = new ArrayList<>();
+        for (int i = 0; i < a.scenes().size(); i++) {
+            Assignment.GradedScene sc = a.scenes().get(i);
+            Path scene = scenesCopy.resolve(root.resolve("scenes").relativize(root.resolve(sc.scene())).toString());
+            if (graded.containsKey(sc.scene()) && graded.get(sc.scene()).varied()) {
+                // The variant in place of the published scene, next to it (relative paths of meshes).
+                Path v = scene.resolveSibling("variant-" + a.id() + "-" + i + "-" + scene.getFileName());
+                Files.writeString(v, graded.get(sc.scene()).json());
+                scene = v;
+            }
+            Path png = dir.resolve("scene" + i + ".png");
+            cmd.add(scene.toString());
+            cmd.add(png.toString());
+            cmd.add(sc.scene());
+            pngs.add(png);
+        }
+        long t0 = System.nanoTime();
+        Duration limit = options.sceneLimit().multipliedBy(a.scenes().size());
+        boolean timedOut = false;
+        List<byte[]> images = new ArrayList<>();
+        List<String> errors = new ArrayList<>();
+        Process p = null;
+        try {
+            ProcessBuilder pb = new ProcessBuilder(cmd).directory(dir.toFile())
+                    .redirectOutput(ProcessBuilder.Redirect.DISCARD).redirectError(ProcessBuilder.Redirect.DISCARD);
+            p = pb.start();
+            p.getOutputStream().close();
+            try {
+                if (!p.waitFor(limit.toMillis(), java.util.concurrent.TimeUnit.MILLISECONDS)) {
+                    timedOut = true;
+                }
+            } catch (InterruptedException e) {
+                Thread.currentThread().interrupt();
+                timedOut = true;
+            }
+            p.descendants().forEach(ProcessHandle::destroyForcibly);
+            p.destroyForcibly();
+            try {
+                p.waitFor(5, java.util.concurrent.TimeUnit.SECONDS);
+            } catch (InterruptedException e) {
+                Thread.currentThread().interrupt();
+            }
+            // Read what the child left only once it is gone, capped in size, not following links.
+            for (Path png : pngs) {
+                images.add(readCapped(png, 64L << 20));
+                byte[] err = readCapped(Path.of(png + ".err"), 64 * 1024);
+                errors.add(err == null ? null : GraderSetup.firstLine(new String(err,
+                        java.nio.charset.StandardCharsets.UTF_8)).replaceFirst("^raylab: ", ""));
+            }
+        } finally {
+            if (p != null) {
+                p.descendants().forEach(ProcessHandle::destroyForcibly);
+                p.destroyForcibly();
+            }
+            sandbox.finish(box, null);
+            GraderSetup.deleteTree(dir);
+        }
+        long ms = (System.nanoTime() - t0) / 1_000_000 / a.scenes().size();
+        // -XX:+ExitOnOutOfMemoryError ends the JVM with status 3 when the heap runs out.
+        boolean outOfMemory = p != null && !timedOut && !p.isAlive() && p.exitValue() == 3;
+        List<String> studentFiles = a.files().stream().map(Assignment.StudentFile::path).toList();
+        for (int i = 0; i < a.scenes().size(); i++) {
+            Assignment.GradedScene sc = a.scenes().get(i);
+            String name = sc.scene();
+            GradedScenes.Graded g = graded.get(sc.scene());
+            byte[] refBytes = g != null && g.varied() ? g.reference() : references.get(sc.reference());
+            byte[] mine = images.get(i);
+            String errLine = errors.get(i) == null ? "" : errors.get(i);
+            String msg;
+            GradeReport.Images shown = null;
+            boolean passed = false;
+            if (refBytes == null) {
+                msg = "grader setup problem: no reference image " + sc.reference();
+            } else if (mine == null || errors.get(i) != null) {
+                msg = !errLine.isEmpty() ? raylab.course.Explain.renderFailure(errLine, studentFiles)
+                        : outOfMemory ? "the render ran out of memory (" + options.sceneHeapMb()
+                                + " MB): look for something that grows with every ray, such as a list or an array"
+                                + " allocated per hit and kept"
+                        : timedOut ? "the renders took longer than " + limit.toSeconds()
+                                + " s and were stopped (an endless loop, or far too slow?)"
+                        : "no image was rendered (the render JVM ended early: System.exit or a crash)";
+                shown = new GradeReport.Images(null, refBytes, null, "");
+            } else {
+                try {
+                    BufferedImage img = ImageIO.read(new java.io.ByteArrayInputStream(mine));
+                    BufferedImage ref = ImageIO.read(new java.io.ByteArrayInputStream(refBytes));
+                    if (img == null) {
+                        throw new IOException("not a PNG image");
+                    }
+                    ImageCompare.Result c = ImageCompare.compare(img, ref);
+                    passed = c.matches(sc.tolerance());
+                    String metric = c.summary() + "; allowed: " + String.format(java.util.Locale.ROOT, "%.3f%%",
+                            100 * sc.tolerance());
+                    msg = passed ? "" : "the image differs from the reference: " + metric
+                            + " (your render, the reference and the difference are shown side by side)";
+                    shown = new GradeReport.Images(mine, refBytes, png(c.diff()), metric);
+                } catch (IOException | RuntimeException e) {
+                    msg = "the rendered image could not be compared: " + e.getMessage();
+                    shown = new GradeReport.Images(null, refBytes, null, "");
+                }
+            }
+            out.add(new GradeReport.Test(a.id(), name, Kind.SCENE, sc.points(), passed ? sc.points() : 0, passed, msg,
+                    "", "visible", ms, sc.scene(), shown));
+        }
+        return out;
+    }
+
     /** Renders the milestone's scenes in one child JVM (in its own box) and compares each with its reference. */
-    private List<GradeReport.Test> gradeScenes(Assignment a, List<Path> layers, GraderSetup setup, Path mdir,
+    private List<GradeReport.Test> gradeScenesInBox(Assignment a, List<Path> layers, GraderSetup setup, Path mdir,
             Path scenesCopy, Sandbox sandbox) throws IOException {
         List<GradeReport.Test> out = new ArrayList<>();
         if (a.scenes().isEmpty()) {
@@ -797,7 +1032,9 @@ public final class Grader {
                     String metric = c.summary() + "; allowed: " + String.format(java.util.Locale.ROOT, "%.3f%%",
                             100 * sc.tolerance());
                     msg = passed ? "" : "the image differs from the reference: " + metric
-                            + " (your render, the reference and the difference are shown side by side)";
+                            + " (your render, the reference and the difference are shown side by side)"
+                            + (g != null && g.varied() ? "; this grading renders a variant of the scene (camera,"
+                                    + " lights and placement moved); ./raylab check compares the published one" : "");
                     shown = new GradeReport.Images(mine, refBytes, png(c.diff()), metric);
                 } catch (IOException | RuntimeException e) {
                     msg = "the rendered image could not be compared: " + e.getMessage();

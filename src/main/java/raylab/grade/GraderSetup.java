@@ -32,6 +32,7 @@ import javax.tools.StandardJavaFileManager;
 import javax.tools.ToolProvider;
 
 import com.fasterxml.jackson.core.type.TypeReference;
+import com.fasterxml.jackson.databind.JsonNode;
 import com.fasterxml.jackson.databind.ObjectMapper;
 
 import raylab.course.Assignment;
@@ -57,6 +58,18 @@ final class GraderSetup {
     final Path tests;
     final List<Path> libraries;
     final Map<String, Path> references = new LinkedHashMap<>();
+    /**
+     * The public classes of every student file (the starter's stubs, compiled): with
+     * {@link #framework} the public framework the student process gets.
+     */
+    final Path publicStubs;
+    /**
+     * The framework as the starter ships it: {@link #framework}'s classes without those the
+     * release leaves out of the starter ({@code assignments/release.json} "exclude").
+     */
+    final Path publicFramework;
+    /** Per milestone: its stand-in classes for the grader's process ({@link raylab.boundary.StandIns}). */
+    final Map<String, Path> standIns = new LinkedHashMap<>();
     /** Per milestone: the test classes (outer names) that belong to it. */
     final Map<String, List<String>> testClasses = new LinkedHashMap<>();
     /** Per milestone: the tests found by running them on the reference. */
@@ -69,6 +82,8 @@ final class GraderSetup {
         this.dir = dir;
         this.framework = dir.resolve("framework.jar");
         this.tests = dir.resolve("tests");
+        this.publicStubs = dir.resolve("public");
+        this.publicFramework = dir.resolve("public-framework");
         this.libraries = libraries;
     }
 
@@ -184,6 +199,7 @@ final class GraderSetup {
         s.testClasses.putAll(classesOf);
         for (Assignment a : milestones) {
             s.references.put(a.id(), dir.resolve("ref").resolve(a.id()));
+            s.standIns.put(a.id(), dir.resolve("standins").resolve(a.id()));
         }
         Path expectedFile = dir.resolve("expected.json");
         if (CacheManifest.usable(dir, log)) { // verified against its hash manifest, else deleted and rebuilt
@@ -228,6 +244,7 @@ final class GraderSetup {
             List<String> prefixes = a.files().stream().map(f -> classPrefix(f.path())).toList();
             copyClasses(code, tmp.resolve("ref").resolve(a.id()), prefixes);
         }
+        writeBoundaryClasses(root, milestones, t, libs);
         // Compile the grader's tests: generated case classes, hidden and visible tests, with
         // their helpers found on the source path.
         Path gen = tmp.resolve("generated");
@@ -291,6 +308,75 @@ final class GraderSetup {
         }
         s.readExpected(expectedFile, milestones);
         return s;
+    }
+
+    /**
+     * The public stubs of every student file (the starter's text, compiled) and, per milestone,
+     * the stand-ins of its classes: the public source with each graded method forwarding to the
+     * student process.
+     */
+    private static void writeBoundaryClasses(Path root, List<Assignment> milestones, GraderSetup t, List<Path> libs)
+            throws IOException {
+        Map<String, String> stubs = new LinkedHashMap<>();
+        for (Assignment a : Assignments0.all(root)) {
+            for (Assignment.StudentFile f : a.files()) {
+                Path src = root.resolve(f.path());
+                stubs.put(classPrefix(f.path()) + ".java", raylab.course.SolutionRegions.toStudent(
+                        src.getFileName().toString(), Files.readString(src), java.util.Set.of()));
+            }
+        }
+        List<Path> below = new ArrayList<>();
+        below.add(t.framework);
+        below.addAll(libs);
+        raylab.boundary.StandIns.compile(stubs, below, t.publicStubs);
+        // The public framework: what the release puts in the starter, no more.
+        List<String> left = new ArrayList<>(List.of("raylab/boundary/"));
+        Path release = root.resolve("assignments/release.json");
+        if (Files.isRegularFile(release)) {
+            for (JsonNode e : JSON.readTree(release.toFile()).path("exclude")) {
+                String x = e.asText();
+                if (x.startsWith("src/main/java/") && x.endsWith("/**")) {
+                    left.add(x.substring("src/main/java/".length(), x.length() - 2));
+                } else if (x.startsWith("src/main/java/") && x.endsWith(".java")) {
+                    left.add(x.substring("src/main/java/".length(), x.length() - 5));
+                }
+            }
+        }
+        Files.createDirectories(t.publicFramework);
+        try (JarFile jar = new JarFile(t.framework.toFile())) {
+            for (var en : (Iterable<java.util.jar.JarEntry>) jar.stream()::iterator) {
+                String n = en.getName();
+                if (en.isDirectory() || n.startsWith("META-INF/") && !n.startsWith("META-INF/services/")
+                        || left.stream().anyMatch(x -> x.endsWith("/") ? n.startsWith(x) : isClassOf(n, x))) {
+                    continue;
+                }
+                Path q = t.publicFramework.resolve(n);
+                Files.createDirectories(q.getParent());
+                try (var in = jar.getInputStream(en)) {
+                    Files.copy(in, q);
+                }
+            }
+        }
+        List<Path> withStubs = new ArrayList<>(below);
+        withStubs.add(0, t.publicStubs);
+        for (Assignment a : milestones) {
+            Map<String, String> fw = new LinkedHashMap<>();
+            for (Assignment.StudentFile f : a.files()) {
+                String rel = classPrefix(f.path()) + ".java";
+                String fq = classPrefix(f.path()).replace('/', '.');
+                java.util.Set<String> names = new java.util.LinkedHashSet<>();
+                for (String m : f.methods()) {
+                    names.add(m.substring(m.lastIndexOf('.') + 1));
+                }
+                fw.put(rel, raylab.boundary.StandIns.forwarding(stubs.get(rel), fq, names));
+            }
+            raylab.boundary.StandIns.compile(fw, withStubs, t.dir.resolve("standins").resolve(a.id()));
+        }
+    }
+
+    /** The class names a milestone's student files define as the grader knows them ("raylab.surface.Sphere"). */
+    static List<String> servedClasses(Assignment a) {
+        return a.files().stream().map(f -> classPrefix(f.path()).replace('/', '.')).toList();
     }
 
     private void readExpected(Path file, List<Assignment> milestones) throws IOException {

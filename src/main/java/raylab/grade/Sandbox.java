@@ -23,8 +23,10 @@ import java.util.stream.Stream;
  * <li>{@link Mode#NAMESPACE} ({@code unshare} from util-linux works: root, or an unprivileged
  * user namespace): new network (no interface but a down loopback), mount, PID, IPC and UTS
  * namespaces; the child's root is an empty read-only tmpfs with only {@code /usr /bin /lib* /etc}
- * and the JDK bound read-only, four device nodes, no {@code /proc}, a private 64 MiB
- * {@code /tmp} (noexec), and the box at {@code /box} ({@code cp} read-only, all of it noexec).
+ * and the JDK bound read-only, four device nodes, no {@code /proc}, the box's class path at
+ * {@code /box/cp} (read-only) and two private tmpfs of {@link #SCRATCH_SIZE} each (noexec):
+ * {@code /box/run}, its working folder (its inputs copied in, the files it leaves copied back at
+ * the end, see {@link #NS_SCRIPT}), and {@code /tmp}.
  * Every capability is dropped ({@code setpriv --bounding-set=-all --no-new-privs}); as root the
  * child also runs as the sandbox user (or {@code nobody}). The child JVM is PID 1 of its PID
  * namespace: when it ends or is killed, the kernel kills every process it left.</li>
@@ -33,7 +35,10 @@ import java.util.stream.Stream;
  * is the only grader folder it can read (the grader's work folder is mode 711, the cache 700).</li>
  * <li>{@link Mode#NONE}: the child runs as the grader's user, from its own copies.</li>
  * </ul>
- * In every mode: {@code prlimit} caps the file size (64 MiB), core dumps (0) and, unless the
+ * As root (namespace and user modes) every child runs under a user id of its own
+ * ({@link UidSlots}), and where cgroups can be written it is in a control group of its own
+ * ({@link Cgroups}: {@link #MAX_TASKS} tasks, a fair CPU share).
+ * In every mode: {@code prlimit} caps the file size (16 MiB), core dumps (0) and, unless the
  * child's real user is root, the number of processes; the child starts in its own session
  * ({@code setsid}) with a marker in its environment, and at the end its process group, its
  * descendants and every process of the grader's user or sandbox user that carries this box's

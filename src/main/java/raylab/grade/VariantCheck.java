@@ -40,7 +40,7 @@ public final class VariantCheck {
     /** A pixel is highlighted where the specular term alone exceeds this in some channel. */
     static final double HIGHLIGHT = 0.1;
     /** Pixel budget of the analysis: larger images are measured at a whole fraction of their size. */
-    static final int MAX_PIXELS = 260_000;
+    static final int MAX_PIXELS = 120_000;
 
     private VariantCheck() {
     }

@@ -49,6 +49,9 @@ public final class StudentServer {
     private final Map<Integer, Object> handles = new HashMap<>();
     private final Map<Object, Integer> handleOf = new IdentityHashMap<>();
     private final Map<Integer, Method> methods = new HashMap<>();
+    /** The grader's lights of the current call, by their numbers there. */
+    private final Map<Object, Integer> lightIds = new IdentityHashMap<>();
+    private int depth;
     private final ByteArrayOutputStream captured = new ByteArrayOutputStream();
     private final Wire.Out reply = new Wire.Out();
     private final Refs refs = new Refs();
@@ -131,12 +134,19 @@ public final class StudentServer {
     }
 
     private void dispatch(Wire.Frame f) throws IOException {
-        switch (f.type()) {
-            case Wire.DEFINE -> define(f);
-            case Wire.METHOD -> method(f);
-            case Wire.CALL -> call(f);
-            case Wire.BATCH -> batch(f);
-            default -> throw new Wire.ProtocolException("unexpected frame type " + f.type());
+        depth++;
+        try {
+            switch (f.type()) {
+                case Wire.DEFINE -> define(f);
+                case Wire.METHOD -> method(f);
+                case Wire.CALL -> call(f);
+                case Wire.BATCH -> batch(f);
+                default -> throw new Wire.ProtocolException("unexpected frame type " + f.type());
+            }
+        } finally {
+            if (--depth == 0) {
+                lightIds.clear(); // the grader's numbers hold for one call
+            }
         }
     }
 
@@ -509,6 +519,15 @@ public final class StudentServer {
     final class Refs implements Wire.Refs {
         @Override
         public boolean encode(Wire.Out out, Object o) {
+            Integer light = o instanceof PointLight ? lightIds.get(o) : null;
+            if (light != null) {
+                out.writeByte(Wire.LIGHT_REF);
+                out.writeInt(light);
+                return true;
+            }
+            if (o instanceof PointLight) {
+                return false; // a light of the student's own: by value
+            }
             Integer h = handleOf.get(o);
             if (h != null) {
                 out.writeByte(Wire.HANDLE);
@@ -543,6 +562,15 @@ public final class StudentServer {
                     int id = in.readInt();
                     BoundingBox b = new BoundingBox(in.readVec3(), in.readVec3());
                     return new RemoteSurface(id, b, in.readString(), in.readBoolean(), in.readInt());
+                }
+                case Wire.LIGHT_REF: {
+                    int id = in.readInt();
+                    Object l = Wire.readValue(in, null);
+                    if (!(l instanceof PointLight light)) {
+                        throw new Wire.ProtocolException("a light reference without a light");
+                    }
+                    lightIds.put(light, id);
+                    return light;
                 }
                 case Wire.REMOTE_MATERIAL:
                     return new RemoteMaterial(in.readInt(), in.readString(), in.readBoolean(), in.readBoolean());

@@ -76,6 +76,11 @@ public final class Wire {
     public static final byte REMOTE_MATERIAL = 15;
     /** A shading point: {@code [int answers][Vec3 x][Vec3 n][Vec3 v][value material]}. */
     public static final byte SHADING_POINT = 16;
+    /**
+     * A grader's light: {@code [int id][LIGHT value]} to the student process, {@code [int id]}
+     * back (the grader gets its own object again).
+     */
+    public static final byte LIGHT_REF = 17;
 
     // Callback operations.
     public static final byte OP_INTERSECT = 1;
@@ -309,12 +314,14 @@ public final class Wire {
             writeVec3OrNull(out, r.d);
             out.writeDouble(r.tMin);
             out.writeDouble(r.tMax);
-        } else if (o instanceof PointLight l) {
+        } else if (o instanceof PointLight l && (refs == null || !refs.encode(out, o))) {
             out.writeByte(LIGHT);
             writeVec3OrNull(out, l.position);
             writeValue(out, l.intensity, refs);
             out.writeBoolean(l.castsShadows);
             out.writeString(l.name);
+        } else if (o instanceof PointLight) {
+            return; // written by refs above
         } else if (o instanceof IntersectionRecord r) {
             out.writeByte(RECORD);
             writeRecord(out, r, refs);
@@ -371,8 +378,10 @@ public final class Wire {
     /** Reads a record's fields into {@code r}; the material is the surface's. */
     public static void readRecordInto(In in, IntersectionRecord r, Refs refs) throws IOException {
         r.t = in.readDouble();
-        r.point = readVec3OrNull(in);
-        r.normal = readVec3OrNull(in);
+        // A point or normal that comes back with the same bits stays the same object: an untouched
+        // record stays untouched, as it would in one process.
+        r.point = same(r.point, readVec3OrNull(in));
+        r.normal = same(r.normal, readVec3OrNull(in));
         Object s = readValue(in, refs);
         if (s != null && !(s instanceof raylab.surface.Surface)) {
             throw new ProtocolException("a record's surface is not a surface");
@@ -381,6 +390,15 @@ public final class Wire {
         r.material = r.surface == null ? null : r.surface.material();
         r.primitive = in.readInt();
         r.tests = in.readLong();
+    }
+
+    private static Vec3 same(Vec3 old, Vec3 got) {
+        if (old != null && got != null && Double.doubleToRawLongBits(old.x) == Double.doubleToRawLongBits(got.x)
+                && Double.doubleToRawLongBits(old.y) == Double.doubleToRawLongBits(got.y)
+                && Double.doubleToRawLongBits(old.z) == Double.doubleToRawLongBits(got.z)) {
+            return old;
+        }
+        return got;
     }
 
     /** Reads a tagged value. */

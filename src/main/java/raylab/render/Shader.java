@@ -40,12 +40,54 @@ public final class Shader {
         this.root = root;
         this.plan = plan;
         this.mode = mode;
-        // Depth is shown between the nearest and farthest possible distance to the scene's box.
+        double[] range = mode == Mode.DEPTH ? depthRange(scene, root) : new double[] {0, 1};
+        this.depthNear = range[0];
+        this.depthFar = range[1];
+    }
+
+    /** Eye rays per image side sampled for the depth range. */
+    static final int DEPTH_SAMPLES = 64;
+    /** The percentiles of the hit distances drawn white and black. */
+    static final double NEAR = 0.02;
+    static final double FAR = 0.75;
+
+    /**
+     * The distances shown as white and black in depth mode: the 2nd and 75th percentiles of the
+     * hit distances of a 64 x 64 grid of eye rays (the farthest quarter is black), so that a huge
+     * ground (the radius-100 sphere of spheres.json) or a far wall does not squeeze everything
+     * else into one grey; the scene's box when nothing is hit. The same for every thread (a fixed grid).
+     */
+    static double[] depthRange(Scene scene, Surface root) {
+        double[] d = new double[DEPTH_SAMPLES * DEPTH_SAMPLES];
+        int n = 0;
+        IntersectionRecord rec = new IntersectionRecord();
+        for (int j = 0; j < DEPTH_SAMPLES; j++) {
+            for (int i = 0; i < DEPTH_SAMPLES; i++) {
+                int x = (int) ((i + 0.5) * scene.width / DEPTH_SAMPLES);
+                int y = (int) ((j + 0.5) * scene.height / DEPTH_SAMPLES);
+                Ray r = scene.camera.rayThroughPixelCenter(Math.min(x, scene.width - 1), Math.min(y, scene.height - 1));
+                rec.reset();
+                if (root.intersect(rec, r)) {
+                    double dist = rec.t * r.d.length();
+                    if (Double.isFinite(dist)) {
+                        d[n++] = dist;
+                    }
+                }
+            }
+        }
+        if (n > 0) {
+            java.util.Arrays.sort(d, 0, n);
+            double near = d[(int) Math.floor(NEAR * (n - 1))];
+            double far = d[(int) Math.ceil(FAR * (n - 1))];
+            if (far > near) {
+                return new double[] {near, far};
+            }
+            return new double[] {Math.max(0, near - 1), near + 1};
+        }
         var box = root.boundingBox();
         double radius = box.isEmpty() ? 1 : box.extent().length() / 2;
         double center = box.isEmpty() ? 1 : box.centroid().minus(scene.camera.eye).length();
-        this.depthNear = Math.max(0, center - radius);
-        this.depthFar = center + radius;
+        return new double[] {Math.max(0, center - radius), center + radius};
     }
 
     /** Reports every step of shading to {@code l} (null: none). */

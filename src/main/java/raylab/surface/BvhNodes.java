@@ -46,6 +46,8 @@ final class BvhNodes {
     static final class Frames {
         int[] refs = new int[256];
         double[] entry = new double[256];
+        /** Entry distances as float bits (the packed engine's float traversal). */
+        int[] bits = new int[256];
         int top;
     }
 
@@ -108,6 +110,7 @@ final class BvhNodes {
             int cap = Math.max(need, 2 * f.refs.length);
             f.refs = Arrays.copyOf(f.refs, cap);
             f.entry = Arrays.copyOf(f.entry, cap);
+            f.bits = Arrays.copyOf(f.bits, cap);
         }
     }
 

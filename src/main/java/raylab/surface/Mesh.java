@@ -209,6 +209,11 @@ public final class Mesh extends Surface {
         return nx == 0 && ny == 0 && nz == 0;
     }
 
+    /** The packed engine, for tests in this package (null with the student kernel). */
+    Engine packedEngine() {
+        return engine;
+    }
+
     /** Whether rays are tested by the packed engine (else by the Triangle objects). */
     public boolean usesPackedKernel() {
         return engine != null;

@@ -79,8 +79,13 @@ public class Triangle extends Surface {
         double b1 = e1 / det;
         double b2 = e2 / det;
         double t = b0 * aRay[2] + b1 * bRay[2] + b2 * cRay[2];
-        if (t < 0 && -t <= zeroBound(aRay, bRay, cRay, e0, e1, e2, det, sz)) {
-            t = 0; // p lies in the plane up to rounding: the hit at t = 0 counts (docs/shading.md)
+        if (inPlane(ray.p, n)) {
+            // p lies in the triangle's plane (up to rounding), so the ray meets the plane at p:
+            // a hit at t = 0 if p is in the triangle's box (docs/shading.md), else no hit.
+            if (!inBox(ray.p)) {
+                return false;
+            }
+            t = 0;
         }
         if (!ray.inRange(t) || t >= outRecord.t) {
             return false;
@@ -113,29 +118,34 @@ public class Triangle extends Surface {
     }
 
     /**
-     * A bound on |t| when the exact t is 0 (p in the triangle's plane): the rounding error of t
-     * (pbrt-v4's conservative t, Pharr, Jakob and Humphreys 2023, §6.8.7, with the sheared x and
-     * y's error taken from the unscaled z, and doubled). With ε = 2⁻⁵³ and γₙ = nε/(1 − nε):
-     * δx = γ₅(max|x| + max|z|), δe = 2(γ₂ max|x| max|y| + δy max|x| + δx max|y|),
-     * δt = 6(γ₃ max|e| max|sz·z| + δe max|sz·z| + γ₃ max|sz·z| max|e|) / |det|.
+     * Whether p lies in the triangle's plane up to the rounding of s = (a − p)·n, n = u × v with
+     * u = b − a, v = c − a: |s| ≤ γ₈ Σᵢ |aᵢ − pᵢ| (|nᵢ| + Nᵢ), where Nᵢ sums the absolute values
+     * of the two products in nᵢ (γₙ = nε/(1 − nε), ε = 2⁻⁵³; twice the rounding error of s).
+     * Only for a plane that rounding leaves defined: Σ|nᵢ| &gt; γ₈ ΣNᵢ (not a sliver whose
+     * computed normal is all rounding error).
      */
-    private static double zeroBound(double[] a, double[] b, double[] c, double e0, double e1,
-            double e2, double det, double sz) {
-        double x = Math.max(Math.max(Math.abs(a[0]), Math.abs(b[0])), Math.abs(c[0]));
-        double y = Math.max(Math.max(Math.abs(a[1]), Math.abs(b[1])), Math.abs(c[1]));
-        double zs = Math.max(Math.max(Math.abs(a[2]), Math.abs(b[2])), Math.abs(c[2]));
-        double z = zs / Math.abs(sz); // the unscaled z, up to rounding
-        double e = Math.max(Math.max(Math.abs(e0), Math.abs(e1)), Math.abs(e2));
-        double dx = GAMMA5 * (x + z);
-        double dy = GAMMA5 * (y + z);
-        double de = 2 * (GAMMA2 * x * y + dy * x + dx * y);
-        return 6 * (GAMMA3 * e * zs + de * zs + GAMMA3 * zs * e) / Math.abs(det);
+    private boolean inPlane(Vec3 p, Vec3 n) {
+        Vec3 u = b.minus(a);
+        Vec3 v = c.minus(a);
+        Vec3 w = a.minus(p);
+        double s = w.dot(n);
+        double nx = Math.abs(u.y * v.z) + Math.abs(u.z * v.y);
+        double ny = Math.abs(u.z * v.x) + Math.abs(u.x * v.z);
+        double nz = Math.abs(u.x * v.y) + Math.abs(u.y * v.x);
+        double bound = GAMMA8 * (Math.abs(w.x) * (Math.abs(n.x) + nx) + Math.abs(w.y) * (Math.abs(n.y) + ny)
+                + Math.abs(w.z) * (Math.abs(n.z) + nz));
+        double size = Math.abs(n.x) + Math.abs(n.y) + Math.abs(n.z);
+        return Math.abs(s) <= bound && size > GAMMA8 * (nx + ny + nz);
     }
 
-    private static final double EPS = 0x1p-53;
-    private static final double GAMMA2 = 2 * EPS / (1 - 2 * EPS);
-    private static final double GAMMA3 = 3 * EPS / (1 - 3 * EPS);
-    private static final double GAMMA5 = 5 * EPS / (1 - 5 * EPS);
+    /** Whether p lies in the triangle's bounding box (closed). */
+    private boolean inBox(Vec3 p) {
+        return p.x >= Math.min(Math.min(a.x, b.x), c.x) && p.x <= Math.max(Math.max(a.x, b.x), c.x)
+                && p.y >= Math.min(Math.min(a.y, b.y), c.y) && p.y <= Math.max(Math.max(a.y, b.y), c.y)
+                && p.z >= Math.min(Math.min(a.z, b.z), c.z) && p.z <= Math.max(Math.max(a.z, b.z), c.z);
+    }
+
+    private static final double GAMMA8 = 8 * 0x1p-53 / (1 - 8 * 0x1p-53);
 
     /** a·b − c·d accurate to 2 ulps (Kahan's algorithm): the FMA recovers c·d's rounding error. */
     private static double differenceOfProducts(double a, double b, double c, double d) {

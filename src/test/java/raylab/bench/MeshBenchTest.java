@@ -85,7 +85,9 @@ class MeshBenchTest {
         String json = lines.get(lines.size() - 1);
         assertTrue(json.startsWith("{\"triangles\":320,\"threads\":2,"), json);
         assertTrue(json.contains("\"hits\":" + expected.hits() + ","), json + " vs " + expected);
-        assertTrue(json.endsWith("\"occluded\":" + expected.occluded() + "}"), json + " vs " + expected);
+        assertTrue(json.contains("\"occluded\":" + expected.occluded() + ","), json + " vs " + expected);
+        assertTrue(json.matches(".*\"cpu_primary_median\":[0-9.]+,.*\"cpu_shadow_max\":[0-9.]+}"),
+                "rates by the tracing threads' CPU time at the end: " + json);
     }
 
     @Test

@@ -80,7 +80,7 @@ class TraceContractTest {
         String bug = trace(sphere("double t = t0;\n        if (!ray.inRange(t) || t >= outRecord.t) {",
                 "double t = t0;\n        if (t >= outRecord.t) {"));
         System.out.println(bug);
-        String surfaceLine = bug.lines().filter(l -> l.contains("\"behind camera\": recorded t = -")).findFirst()
+        String surfaceLine = bug.lines().filter(l -> l.contains("\"behind camera\": hit at t = -")).findFirst()
                 .orElseThrow(() -> new AssertionError("no line for the sphere behind the camera:\n" + bug));
         assertTrue(surfaceLine.contains(ContractCheck.MARK + "the recorded t = ")
                 && surfaceLine.contains("must lie in [tMin, tMax] = [0, Infinity]: a hit behind the ray's start does not count"),

@@ -88,7 +88,8 @@ class GraderAttackTest {
             accept.start();
             String attack = Files.readString(root.resolve("src/test/resources/submissions/attacks/Sphere.java"))
                     .replace("@CACHE@", cache.toString()).replace("@OUT@", out.toString())
-                    .replace("@PORT@", Integer.toString(server.getLocalPort())).replace("@TAG@", Long.toString(tag));
+                    .replace("@PORT@", Integer.toString(server.getLocalPort())).replace("@TAG@", Long.toString(tag))
+                    .replace("@ARMED@", "true");
             Files.writeString(sub.resolve("Sphere.java"), attack);
             // In a sandbox the attack's renders cannot finish (each intersect prints every ray seen so
             // far): a short scene limit keeps the wait for their time-out short. The renders are not
@@ -215,6 +216,248 @@ class GraderAttackTest {
         assertTrue(Files.deleteIfExists(Path.of("/tmp/raylab-attack-" + run.tag() + ".txt")), "the attack ran");
         assertTrue(Files.deleteIfExists(run.cache().resolve("canary-" + run.tag() + ".txt")), "the attack ran");
         assertTrue(run.connections() > 0, "the attack reached the network");
+    }
+
+    // ------------------------------------------------------------------ every attack class, every mode
+
+    /**
+     * Two hostile submissions written from the starter alone, each attack in its milestone's
+     * file and the reference solution in the other files (so that the other milestones show
+     * whether an attack reached them). A: the sphere of {@link #attack} (reference loading,
+     * forged reports, network, /tmp, detached processes, cache poisoning), a triangle with the
+     * forgeable REFERENCE_KERNEL marker, shadows that fill every writable place and work a covert
+     * channel from the hidden-test JVM to the other JVMs. B: a box that registers a PNG writer
+     * ahead of the JDK's writing the published reference images, a Lambertian that looks for
+     * reference classes, hidden tests, reference images and the cache and puts what it finds
+     * into messages and pixels, a Shading that looks at every thread's stack for the test
+     * framework or the grader, a BlinnPhong that starts 1,000 never-ending busy threads.
+     */
+    static final List<String> SUBMISSION_A = List.of("Sphere.java", "Triangle.java", "Shadows.java");
+    static final List<String> SUBMISSION_B = List.of("Box.java", "Lambertian.java", "Shading.java", "BlinnPhong.java");
+
+    /** One grading of an attack submission: per milestone its score and maximum. */
+    record Graded(JsonNode results, String text, java.util.Map<String, Double> score, java.util.Map<String, Double> max,
+            List<String> attacked, Path cacheKey, String tag) {
+        double score(String m) {
+            return score.getOrDefault(m, 0.0);
+        }
+    }
+
+    private static final java.util.Map<String, Graded> GRADED = new java.util.concurrent.ConcurrentHashMap<>();
+
+    /** Milestones of the student files named. */
+    private static List<String> milestonesOf(List<String> files) {
+        List<String> out = new java.util.ArrayList<>();
+        for (Assignment a : assignments.all()) {
+            for (Assignment.StudentFile f : a.files()) {
+                if (files.contains(Path.of(f.path()).getFileName().toString()) && !out.contains(a.id())) {
+                    out.add(a.id());
+                }
+            }
+        }
+        return out;
+    }
+
+    /** Grades (once per JVM) the submission with these attack files armed or not, in a mode. */
+    private static Graded graded(List<String> attacks, boolean armed, String mode, String user) throws Exception {
+        String key = attacks + " " + armed + " " + mode + " " + user;
+        Graded g = GRADED.get(key);
+        if (g == null) {
+            g = grade(attacks, armed, mode, user);
+            GRADED.put(key, g);
+        }
+        return g;
+    }
+
+    private static Graded grade(List<String> attacks, boolean armed, String mode, String user) throws Exception {
+        String tag = Integer.toString(41_000 + new SplittableRandom(System.nanoTime()).nextInt(9_000));
+        Path work = Files.createTempDirectory("raylab-attacks");
+        try {
+            // Mode none poisons its cache (and must throw it away): a cache of its own, so that no
+            // other test grading at the same time loses the shared one.
+            Path cache = root.resolve(mode.equals("none") ? "target/grader-cache-none" : "target/grader-cache");
+            Path out = Files.createDirectories(work.resolve("out"));
+            Path sub = Files.createDirectories(work.resolve("sub"));
+            Set<String> all = new java.util.TreeSet<>(assignments.ids());
+            java.util.Base64.Encoder b64 = java.util.Base64.getEncoder();
+            for (Assignment a : assignments.all()) {
+                for (Assignment.StudentFile f : a.files()) {
+                    Path src = root.resolve(f.path());
+                    String name = src.getFileName().toString();
+                    String text = attacks.contains(name)
+                            ? Files.readString(root.resolve("src/test/resources/submissions/attacks/" + name))
+                                    .replace("@ARMED@", Boolean.toString(armed))
+                                    .replace("@ARMED_FIELD@", armed ? "static final boolean REFERENCE_KERNEL = true;" : "")
+                                    .replace("@CACHE@", cache.toString()).replace("@OUT@", out.toString())
+                                    .replace("@PORT@", "9").replace("@TAG@", tag)
+                                    .replace("@REF0@", b64.encodeToString(Files.readAllBytes(root.resolve("scenes/reference/boxes.png"))))
+                                    .replace("@REF1@", b64.encodeToString(Files.readAllBytes(
+                                            root.resolve("scenes/reference/boxes-front.png"))))
+                            : SolutionRegions.toStudent(name, Files.readString(src), all);
+                    Files.writeString(sub.resolve(name), text);
+                }
+            }
+            ByteArrayOutputStream err = new ByteArrayOutputStream();
+            int status = Main.run(new PrintWriter(new ByteArrayOutputStream(), true),
+                    new PrintWriter(err, true, StandardCharsets.UTF_8), "grade", sub.toString(), "--out", out.toString(),
+                    "--root", root.toString(), "--quiet", "--test-timeout", "10", "--milestone-timeout", "120",
+                    "--heap", "256", "--sandbox", mode, "--sandbox-user", user, "--cache", cache.toString());
+            assertEquals(0, status, () -> "graded: " + err);
+            Thread.sleep(4_500); // past the detached forger's 4 s
+            JsonNode r = JSON.readTree(out.resolve("results.json").toFile());
+            GraderTest.checkSchema(r);
+            java.util.Map<String, Double> score = new java.util.TreeMap<>();
+            java.util.Map<String, Double> max = new java.util.TreeMap<>();
+            for (JsonNode t : r.get("tests")) {
+                String m = t.get("tags").get(0).asText();
+                score.merge(m, t.get("score").asDouble(), Double::sum);
+                max.merge(m, t.get("max_score").asDouble(), Double::sum);
+            }
+            String text = r.toString() + Files.readString(out.resolve("report.html"));
+            Path keyDir = null;
+            // The cache this grading used: the newest one (older keys of other builds may lie beside it).
+            try (var s = Files.list(cache)) {
+                keyDir = s.filter(p -> Files.isRegularFile(p.resolve(CacheManifest.FILE))).max(java.util.Comparator
+                        .comparingLong(p -> p.resolve(CacheManifest.FILE).toFile().lastModified())).orElse(null);
+            }
+            System.out.println("[attacks] " + mode + " " + (armed ? "armed" : "disarmed") + " " + attacks + ": " + score
+                    + " of " + max);
+            return new Graded(r, text, score, max, milestonesOf(attacks), keyDir, tag);
+        } finally {
+            GraderSetup.deleteTree(work);
+            // What the attacks leave where nothing is isolated (modes user and none).
+            Files.deleteIfExists(Path.of("/tmp/raylab-attack-" + tag + ".txt"));
+            for (Path place : UidSlots.SHARED) {
+                try (var s = Files.list(place)) {
+                    for (Path p : (Iterable<Path>) s::iterator) {
+                        String n = p.getFileName().toString();
+                        if (n.startsWith("fill-" + tag + "-") || n.startsWith("raylab-covert-" + tag)) {
+                            Files.deleteIfExists(p);
+                        }
+                    }
+                } catch (IOException e) {
+                    // not there
+                }
+            }
+        }
+    }
+
+    /**
+     * No point from an attack: each attacked milestone scores at most what the same files
+     * without their attacks score (they implement nothing: no hit, black), and the milestones
+     * with the reference solution score full marks, as in a clean grading. {@code except}:
+     * milestones whose attack still works on today's grader (named in the caller).
+     */
+    private static void assertNoForgedPointAndNoneLost(Graded attack, Graded disarmed, Set<String> except) {
+        for (String m : attack.max().keySet()) {
+            if (except.contains(m)) {
+                continue;
+            }
+            if (attack.attacked().contains(m)) {
+                assertTrue(attack.score(m) <= disarmed.score(m) + 1e-9, m + ": no point from the attack: attacked "
+                        + attack.score(m) + ", without the attack " + disarmed.score(m) + " (of " + attack.max().get(m) + ")");
+            } else {
+                assertEquals(attack.max().get(m), attack.score(m), 1e-9, m + " (reference code) is not affected by the"
+                        + " attacks beside it: full marks expected");
+            }
+        }
+    }
+
+    /** The cache the grading used is still exactly what its manifest lists. */
+    private static void assertCacheIntact(Graded g) {
+        assertTrue(g.cacheKey() != null, "the cache is there");
+        assertEquals(java.util.Optional.empty(), CacheManifest.verify(g.cacheKey()), "the cache is not poisoned");
+        assertFalse(g.text().contains("the grader cache was changed"), "no poisoning was reported");
+    }
+
+    /** The covert channel and the shadows attack reported, and the channel carried nothing. */
+    private static void assertNoCovertChannel(Graded a) {
+        assertTrue(a.text().contains("covert: found nothing"), "the covert channel's reader reported");
+        assertFalse(a.text().matches("(?s).*covert: found (?!nothing).*"), "nothing crossed between children");
+    }
+
+    /** What only the boundary (student code alone in its process) and the mesh change give. */
+    private static void assertNothingSecretFound(Graded b) {
+        assertTrue(b.text().contains("secrets: found nothing"), "the secret search reported nothing found");
+        assertFalse(b.text().matches("(?s).*secrets: found (?!nothing).*"), "no reference, hidden test, image or scene");
+        assertFalse(b.text().matches("(?s).*stack: found (?!nothing).*"), "no test framework or grader frame seen");
+    }
+
+    private static Graded disarmed(List<String> attacks) throws Exception {
+        return graded(attacks, false, namespaces() ? "namespace" : "none", "");
+    }
+
+    @Test
+    void everyAttackClassInTheNamespaceSandbox() throws Exception {
+        assumeTrue(namespaces(), "unshare cannot create namespaces here");
+        Graded a = graded(SUBMISSION_A, true, "namespace", GraderTest.sandboxUser());
+        Graded b = graded(SUBMISSION_B, true, "namespace", GraderTest.sandboxUser());
+        // The PNG hook forges nothing already: the graded scenes are per-grading variants, whose
+        // references the student never sees (after the boundary, no PNG is even written in the child).
+        assertNoForgedPointAndNoneLost(a, disarmed(SUBMISSION_A), Set.of());
+        assertNoForgedPointAndNoneLost(b, disarmed(SUBMISSION_B), Set.of());
+        assertNoCovertChannel(a);
+        java.util.regex.Matcher disk = java.util.regex.Pattern.compile("disk: wrote (\\d+) MB").matcher(a.text());
+        assertTrue(disk.find(), "the disk attack reported: " + excerpt(a.text(), "disk: "));
+        do {
+            int mb = Integer.parseInt(disk.group(1));
+            assertTrue(mb > 0 && mb <= 32, "each child fills only its own two 16 MB tmpfs (run folder and /tmp): wrote " + mb + " MB");
+        } while (disk.find());
+        assertCacheIntact(a);
+        assertCacheIntact(b);
+    }
+
+    @Test
+    void everyAttackClassWithTheSandboxUserWithoutNamespaces() throws Exception {
+        assumeTrue(Sandbox.isRoot() && Files.readString(Path.of("/etc/passwd")).contains("\n" + GraderTest.sandboxUser() + ":"),
+                "needs root and the user " + GraderTest.sandboxUser() + " (.ci/run creates it)");
+        Graded a = graded(SUBMISSION_A, true, "user", GraderTest.sandboxUser());
+        Graded b = graded(SUBMISSION_B, true, "user", GraderTest.sandboxUser());
+        assertNoForgedPointAndNoneLost(a, disarmed(SUBMISSION_A), Set.of());
+        assertNoForgedPointAndNoneLost(b, disarmed(SUBMISSION_B), Set.of());
+        // Each child its own uid, its files in /tmp removed when it ends: the channel is empty.
+        assertNoCovertChannel(a);
+        assertCacheIntact(a);
+        assertCacheIntact(b);
+    }
+
+    @Test
+    void everyAttackClassWithoutASandbox() throws Exception {
+        Graded a = graded(SUBMISSION_A, true, "none", "");
+        Graded b = graded(SUBMISSION_B, true, "none", "");
+        // Mode none isolates no file (README): the sphere can load its reference from the cache,
+        // the covert channel works; the milestones with reference code must still be unaffected,
+        // and the poisoned cache must be caught and thrown away.
+        for (Graded g : List.of(a, b)) {
+            for (String m : g.max().keySet()) {
+                if (!g.attacked().contains(m)) {
+                    assertEquals(g.max().get(m), g.score(m), 1e-9, m + " (reference code) is not affected");
+                }
+            }
+        }
+        assertTrue(a.text().contains("the grader cache was changed while this submission was graded"),
+                "the poisoning was caught: " + excerpt(a.text(), "cache"));
+        assertTrue(a.cacheKey() == null || CacheManifest.verify(a.cacheKey()).isEmpty(),
+                "the poisoned cache was deleted (the next grading builds it again)");
+    }
+
+    /**
+     * What waits for the boundary (issue 17: student code alone in its process, renders in the
+     * trusted one): no reference class, hidden test, reference image or grader frame is within
+     * the student code's reach. Run with {@code -Draylab.attacks.afterBoundary=true};
+     * enable it for good at the merge.
+     */
+    @Test
+    @org.junit.jupiter.api.Tag("after-boundary")
+    @org.junit.jupiter.api.condition.EnabledIfSystemProperty(named = "raylab.attacks.afterBoundary", matches = "true")
+    void afterTheBoundaryNothingSecretIsFound() throws Exception {
+        assumeTrue(namespaces(), "unshare cannot create namespaces here");
+        assertNothingSecretFound(graded(SUBMISSION_B, true, "namespace", GraderTest.sandboxUser()));
+    }
+
+    private static String excerpt(String text, String around) {
+        int k = text.indexOf(around);
+        return k < 0 ? "(not found)" : text.substring(k, Math.min(text.length(), k + 200));
     }
 
     /** Endless recursion inside the grader itself (its log callback) still gives a results.json. */

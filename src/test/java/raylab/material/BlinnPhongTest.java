@@ -48,8 +48,29 @@ class BlinnPhongTest {
     void fortyFiveDegrees(double p, double expected) {
         // v = (0,0,1), l = (1,0,0): v + l = (1,0,1), h = (1,0,1)/√2, n·h = 1/√2.
         Color got = shiny(grey(1), p).specular(N, new Vec3(1, 0, 0), N, WHITE_LIGHT);
-        Check.color("specular with n·h = 1/√2, p = " + p, grey(expected), got,
-                "use n·h with the half vector h, not n·l (which is 0 here)");
+        // n·l = 0 here, and so is the reflection vector's r·v (v = n): black names both mistakes.
+        Check.colorLikely("specular with n·h = 1/√2, p = " + p, grey(expected), got,
+                new Check.Likely(Color.BLACK, "black: the term must use n·h with the half vector h = (v + l)/‖v + l‖"
+                        + " (n·h = 1/√2 here); n·l and the reflection vector's r·v are both 0 here"));
+    }
+
+    @Test
+    @DisplayName("v off the normal: the half vector's n·h, not n·l or the reflection vector's r·v")
+    void halfVectorNotReflection() {
+        // n = (0,0,1), l = (0.6,0,0.8), v = (0,0.6,0.8): v + l = (0.6,0.6,1.6), n·h = 1.6/√3.28.
+        // Wrong forms give other values: n·l = 0.8; r = 2(n·l)n − l = (−0.6,0,0.8), r·v = 0.64.
+        Vec3 l = new Vec3(0.6, 0, 0.8);
+        Vec3 v = new Vec3(0, 0.6, 0.8);
+        double p = 4;
+        double nh = 1.6 / Math.sqrt(3.28);
+        Color got = shiny(grey(1), p).specular(N, l, v, WHITE_LIGHT);
+        Check.colorLikely("specular with n·h = 1.6/√3.28, p = 4", grey(Math.pow(nh, p)), got,
+                new Check.Likely(grey(Math.pow(0.8, p)), "that is max(0, n·l)^p: the highlight uses n·h with the half"
+                        + " vector h = (v + l)/‖v + l‖, not n·l"),
+                new Check.Likely(grey(Math.pow(0.64, p)), "that is Phong's reflection-vector term max(0, r·v)^p with"
+                        + " r = 2(n·l)n − l; Blinn-Phong uses the half vector instead: max(0, n·h)^p, h = (v + l)/‖v + l‖"),
+                new Check.Likely(grey(Math.pow(1.6, p)), "n·(v + l) without dividing by ‖v + l‖: h must be a unit"
+                        + " vector"));
     }
 
     @ParameterizedTest(name = "p = {0}: n·h^p = {1}")
@@ -63,8 +84,11 @@ class BlinnPhongTest {
         // v = (0,0,1), l = (0.6,0,0.8): v + l = (0.6, 0, 1.8) = 0.6·(1,0,3), so h = (1,0,3)/√10
         // and n·h = 3/√10; (n·h)² = 9/10.
         Color got = shiny(grey(1), p).specular(N, new Vec3(0.6, 0, 0.8), N, WHITE_LIGHT);
-        Check.color("specular with n·h = 3/√10, p = " + p, grey(expected), got,
-                "h = (v + l)/‖v + l‖ must be a unit vector; L_s = ks∘I·max(0, n·h)^p");
+        Check.colorLikely("specular with n·h = 3/√10, p = " + p, grey(expected), got,
+                new Check.Likely(grey(Math.pow(1.8, p)), "n·(v + l) = 1.8 here: h = (v + l)/‖v + l‖ must be a unit vector;"
+                        + " L_s = ks∘I·max(0, n·h)^p"),
+                new Check.Likely(grey(Math.pow(0.8, p)), "0.8 = n·l here (and the reflection vector's r·v, since v = n):"
+                        + " the highlight uses n·h with the half vector h = (v + l)/‖v + l‖ (n·h = 3/√10)"));
     }
 
     @Test

@@ -92,10 +92,8 @@ class EyeInTrianglePlaneTest {
                 boolean hit = tri.intersect(rec, ray);
                 assertTrue(hit, "seed " + seed + " pixel (" + x + ", " + y + "): eye ray " + ray
                         + " starts inside the triangle in its plane: expected a hit at t = 0, got a miss");
-                // t = 0 up to rounding: a negative t within the error bound of 0 is 0; a positive
-                // one is kept as computed.
-                assertTrue(rec.t >= 0 && rec.t < 1e-9, "seed " + seed + " pixel (" + x + ", " + y + "): t of " + ray
-                        + ": expected 0 up to rounding, got " + rec.t);
+                // A t within the test's rounding bound of 0 is 0.
+                assertEquals(0.0, rec.t, "seed " + seed + " pixel (" + x + ", " + y + "): t of " + ray);
                 if (!image.get(x, y).equals(orange)) {
                     background++;
                 }
@@ -149,8 +147,7 @@ class EyeInTrianglePlaneTest {
             boolean hb = mesh.intersect(b, ray);
             String what = "seed " + seed + " ray " + i + " " + ray;
             assertEquals(ha, hb, what + ": Triangle.intersect vs the packed kernel");
-            assertTrue(ha && a.t >= 0 && a.t < 1e-9, what + ": a hit at t = 0 (up to rounding) expected, got "
-                    + (ha ? "t = " + a.t : "a miss"));
+            assertTrue(ha && a.t == 0, what + ": a hit at t = 0 expected, got " + (ha ? "t = " + a.t : "a miss"));
             assertEquals(Double.doubleToRawLongBits(a.t), Double.doubleToRawLongBits(b.t),
                     what + ": t " + a.t + " vs " + b.t);
             assertEquals(a.point, b.point, what + ": point");

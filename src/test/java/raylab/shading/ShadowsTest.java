@@ -116,6 +116,18 @@ class ShadowsTest {
     }
 
     @Test
+    @DisplayName("a thin card 0.005 above the point casts a shadow (the offset must be tiny)")
+    void closeBlocker() {
+        // A card from y = 0.004 to 0.006 right above x = (0, 0, 0), the light 10 above: on the
+        // shadow ray d = light − x the card is at t = 0.0004 to 0.0006. A shadow ray that starts
+        // 0.01 off the surface (or skips t < 0.001) starts beyond it.
+        Box card = new Box(new Vec3(-0.5, 0.004, -0.5), new Vec3(0.5, 0.006, 0.5), WHITE, "thin card");
+        Check.shadowed(scene(FLOOR, card), X, UP, LIGHT, card,
+                "the card is 0.004 above x: an offset ε (or a tMin) that large skips it; keep the offset tiny"
+                        + " (Shadows.EPSILON = 1e-6 is enough against acne at everyday sizes)");
+    }
+
+    @Test
     @DisplayName("a ball beside the path casts no shadow")
     void blockerBeside() {
         Check.lit(scene(FLOOR, ball(3, 5, 0, 1)), X, UP, LIGHT, null);

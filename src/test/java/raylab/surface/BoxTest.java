@@ -94,16 +94,16 @@ class BoxTest {
     @DisplayName("d parallel to two slabs, inside both: hit")
     void parallelInsideSlabs() {
         // d has zero x and y components; p.x = 1.9 is inside [1, 2], p.y = 3 inside [2, 4].
-        Check.hit(BOX, new Ray(v(1.9, 3, 10), DOWN_Z), 3, v(1.9, 3, 7), v(0, 0, 1),
-                "when d_x = 0, the ray is inside the x slab for every t (if min x ≤ p_x ≤ max x)");
+        Check.hitWhen(BOX, new Ray(v(1.9, 3, 10), DOWN_Z), 3, v(1.9, 3, 7), v(0, 0, 1),
+                Check.Hint.zeroComponent("when d_x = 0, the ray is inside the x slab for every t (if min x ≤ p_x ≤ max x)"));
     }
 
     @Test
     @DisplayName("d parallel to a slab, outside it: miss")
     void parallelOutsideSlab() {
         // p.x = 2.1 is outside [1, 2] and d_x = 0: the ray never gets into the x slab.
-        Check.miss(BOX, new Ray(v(2.1, 3, 10), DOWN_Z),
-                "when d_x = 0 and p_x is outside [min x, max x], the ray never enters the box");
+        Check.missWhen(BOX, new Ray(v(2.1, 3, 10), DOWN_Z),
+                Check.Hint.zeroComponent("when d_x = 0 and p_x is outside [min x, max x], the ray never enters the box"));
         // p.y = 5 is outside [2, 4] and d_y = 0 (the ray runs along +x above the box).
         Check.miss(BOX, new Ray(v(0, 5, 5), v(1, 0, 0)), null);
     }

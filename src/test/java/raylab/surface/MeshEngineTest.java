@@ -16,6 +16,7 @@ import org.junit.jupiter.params.provider.ValueSource;
 
 import raylab.material.FlatColor;
 import raylab.material.Material;
+import raylab.math.BoundingBox;
 import raylab.math.Color;
 import raylab.math.Vec3;
 import raylab.ray.IntersectionRecord;
@@ -145,6 +146,155 @@ class MeshEngineTest {
             }
         }
         return found;
+    }
+
+    /** The mesh of seed s scaled by 2^e and moved by o (exact for powers of two and small o). */
+    static List<Triangle> scaled(List<Triangle> tris, int e, Vec3 o) {
+        List<Triangle> out = new ArrayList<>();
+        for (Triangle t : tris) {
+            out.add(new Triangle(move(t.a, e, o), move(t.b, e, o), move(t.c, e, o), M, t.name()));
+        }
+        return out;
+    }
+
+    static Vec3 move(Vec3 v, int e, Vec3 o) {
+        return new Vec3(Math.scalb(v.x, e) + o.x, Math.scalb(v.y, e) + o.y, Math.scalb(v.z, e) + o.z);
+    }
+
+    /**
+     * Rays that stress the float traversal's widened bounds: grazing a triangle's plane, along a
+     * shared edge (from a point on its line), from far away (10⁶ to 10¹² times the mesh, and
+     * beyond the float range), starting on a box plane or a vertex (t = 0 hits), and tiny
+     * direction components.
+     */
+    static List<Ray> stressRays(long seed, List<Triangle> mesh, int n) {
+        SplittableRandom r = new SplittableRandom(seed * 104729 + 3);
+        BoundingBox box = new Mesh(mesh, "box").boundingBox();
+        double size = box.max.minus(box.min).length();
+        Vec3 mid = box.min.plus(box.max).times(0.5);
+        List<Ray> rays = new ArrayList<>();
+        for (int i = 0; i < n; i++) {
+            Triangle t = mesh.get(r.nextInt(mesh.size()));
+            Vec3 u = t.b.minus(t.a);
+            Vec3 w = t.c.minus(t.a);
+            Vec3 nrm = u.cross(w);
+            Vec3 inside = t.a.plus(u.times(r.nextDouble(0, 0.5))).plus(w.times(r.nextDouble(0, 0.5)));
+            Vec3 p;
+            Vec3 d;
+            switch (i % 7) {
+                case 0 -> { // grazing: almost in the triangle's plane, toward a point inside it
+                    Vec3 along = u.times(r.nextDouble(-1, 1)).plus(w.times(r.nextDouble(-1, 1)));
+                    d = along.plus(nrm.times(Math.scalb(1.0, -r.nextInt(10, 40)) / (nrm.length() + 1e-300)));
+                    p = inside.minus(d.times(r.nextDouble(0.5, 4)));
+                }
+                case 1 -> { // along a shared edge, from a point on its line
+                    d = r.nextBoolean() ? u : w;
+                    p = t.a.minus(d.times(r.nextDouble(0, 3)));
+                }
+                case 2 -> { // from far away, at a vertex or inside
+                    double far = size * Math.pow(10, r.nextInt(6, 13));
+                    p = mid.plus(rnd(r, -1, 1).normalize().times(far));
+                    d = (r.nextBoolean() ? t.b : inside).minus(p);
+                }
+                case 3 -> { // beyond the float range: the double traversal
+                    p = mid.plus(rnd(r, -1, 1).normalize().times(1e19));
+                    d = inside.minus(p);
+                }
+                case 4 -> { // starting exactly on a vertex, or on the mesh box's planes
+                    p = r.nextBoolean() ? t.c : new Vec3(box.min.x, r.nextBoolean() ? box.max.y : t.a.y, t.a.z);
+                    d = rnd(r, -1, 1);
+                }
+                case 5 -> { // tiny and huge direction components
+                    p = mid.plus(rnd(r, -1, 1).times(size));
+                    d = inside.minus(p);
+                    double s = Math.scalb(1.0, r.nextInt(-45, 45));
+                    d = new Vec3(d.x * s, r.nextBoolean() ? d.y * 1e-12 : d.y, d.z);
+                }
+                default -> { // from inside the box, toward an edge midpoint
+                    p = mid.plus(rnd(r, -0.3, 0.3).times(size));
+                    d = t.a.plus(t.b).times(0.5).minus(p);
+                }
+            }
+            rays.add(i % 4 == 0 ? new Ray(p, d, Double.MIN_VALUE, Math.nextDown(1.0)) : new Ray(p, d));
+        }
+        return rays;
+    }
+
+    /** Tree vs loop on one ray, with the tie rule; returns 1 for a hit. */
+    static int agree(Mesh mesh, List<Triangle> tris, Ray ray, String ctx, int[] ties) {
+        IntersectionRecord expected = new IntersectionRecord();
+        IntersectionRecord actual = new IntersectionRecord();
+        IntersectionRecord scratch = new IntersectionRecord();
+        int want = linear(tris, expected, ray);
+        boolean got = mesh.intersect(actual, ray);
+        assertEquals(want >= 0, got, ctx + ": hit? loop found " + expected + ", tree " + actual);
+        assertEquals(want >= 0, mesh.intersectsAny(ray, scratch), ctx + ": any hit");
+        if (want < 0) {
+            return 0;
+        }
+        assertEquals(Double.doubleToRawLongBits(expected.t), Double.doubleToRawLongBits(actual.t),
+                ctx + ": t " + expected.t + " vs " + actual.t);
+        if (actual.primitive != want) {
+            IntersectionRecord other = new IntersectionRecord();
+            assertTrue(tris.get(actual.primitive).intersect(other, ray), ctx + ": tree's triangle #"
+                    + actual.primitive + " is not hit at all (loop: #" + want + ")");
+            assertEquals(expected.t, other.t, ctx + ": tree's triangle #" + actual.primitive
+                    + " is hit at another t than the loop's #" + want);
+            assertEquals(other.point, actual.point, ctx + ": point of the tied triangle");
+            ties[0]++;
+        } else {
+            assertEquals(expected.point, actual.point, ctx + ": point");
+            assertEquals(expected.normal, actual.normal, ctx + ": normal");
+        }
+        return 1;
+    }
+
+    @ParameterizedTest(name = "seed {0}")
+    @ValueSource(longs = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12})
+    void stressRaysAgreeWithALinearLoop(long seed) {
+        // The mesh as it is, tiny (2⁻⁹⁰: below the float grid's 2⁻⁷²), huge (2⁵⁰), and moved far.
+        int[][] scales = {{0}, {-90}, {50}, {0}};
+        Vec3[] moves = {new Vec3(0, 0, 0), new Vec3(0, 0, 0), new Vec3(0, 0, 0), new Vec3(3e6, -1e6, 2.5e6)};
+        int hits = 0;
+        int[] ties = {0};
+        for (int v = 0; v < scales.length; v++) {
+            List<Triangle> tris = scaled(randomMesh(seed), scales[v][0], moves[v]);
+            Mesh mesh = new Mesh(tris, "mesh");
+            assertTrue(mesh.usesPackedKernel(), "the reference Triangle: packed kernel");
+            for (Ray ray : stressRays(seed + 100 * v, tris, 1500)) {
+                hits += agree(mesh, tris, ray, "seed " + seed + " variant " + v + " (" + tris.size() + " triangles), "
+                        + ray, ties);
+            }
+        }
+        assertTrue(hits > 1000, "seed " + seed + ": too few hits to mean anything: " + hits);
+        System.out.printf("seed %d stress: %d hits, %d on ties%n", seed, hits, ties[0]);
+    }
+
+    @ParameterizedTest(name = "seed {0}")
+    @ValueSource(longs = {1, 2, 3, 4, 5, 6})
+    void theFloatTraversalVisitsWhatTheDoubleOneFinds(long seed) {
+        // Same triangle and t on every ray, tie or not: both traversals visit in the same order.
+        List<Triangle> tris = randomMesh(seed);
+        Mesh mesh = new Mesh(tris, "mesh");
+        PackedTriangles engine = (PackedTriangles) mesh.packedEngine();
+        IntersectionRecord a = new IntersectionRecord();
+        IntersectionRecord b = new IntersectionRecord();
+        List<Ray> rays = new ArrayList<>(randomRays(seed, tris, 2000));
+        rays.addAll(stressRays(seed, tris, 2000));
+        for (Ray ray : rays) {
+            for (boolean any : new boolean[] {false, true}) {
+                a.reset();
+                b.reset();
+                boolean ha = engine.intersect(a, ray, any);
+                boolean hb = engine.intersectDouble(b, ray, any);
+                String ctx = "seed " + seed + " " + ray + (any ? " any hit" : " closest");
+                assertEquals(hb, ha, ctx + ": hit? double " + b + ", float " + a);
+                if (hb && !any) {
+                    assertEquals(Double.doubleToRawLongBits(b.t), Double.doubleToRawLongBits(a.t), ctx + ": t");
+                    assertEquals(b.primitive, a.primitive, ctx + ": triangle");
+                }
+            }
+        }
     }
 
     @ParameterizedTest(name = "seed {0}")
@@ -303,7 +453,7 @@ class MeshEngineTest {
             assertEquals("soup triangle #" + i, back.get(i).name());
         }
         assertEquals(tris.size(), mesh.primitiveCount());
-        assertTrue(mesh.packedBytes() <= 100L * tris.size(), mesh.packedBytes() + " bytes for "
+        assertTrue(mesh.packedBytes() <= 120L * tris.size(), mesh.packedBytes() + " bytes for "
                 + tris.size() + " triangles");
     }
 

@@ -55,6 +55,54 @@ public final class Check {
         }
     }
 
+    // ---------------------------------------------------------------- hints chosen by evidence
+
+    /**
+     * What a failed check saw, for deciding which hint applies.
+     *
+     * @param problem  "no hit", "wrong t", "wrong point", "wrong normal", "unexpected hit", ...
+     * @param ray      the ray (null for colour checks)
+     * @param expected the expected normal (null when none)
+     * @param got      the recorded normal (null when none)
+     */
+    public record Failure(String problem, Ray ray, Vec3 expected, Vec3 got) {
+        /** A hit where a miss was expected, a miss where a hit was, or the wrong t. */
+        public boolean hitOrT() {
+            return problem.equals("no hit") || problem.equals("wrong t") || problem.equals("unexpected hit");
+        }
+
+        /** Whether d has an exactly zero component. */
+        public boolean zeroComponent() {
+            return ray != null && (ray.d.x == 0 || ray.d.y == 0 || ray.d.z == 0);
+        }
+    }
+
+    /**
+     * A hint that names one mistake, shown only when the failing case's data match it: a hint
+     * about d_x = 0 only for a wrong hit, miss or t of a ray with a zero component, a hint about
+     * the normal only for a wrong normal. A plain string hint is shown with any failure.
+     */
+    public record Hint(String text, java.util.function.Predicate<Failure> when) {
+        /** The d = 0 hint: a wrong hit, miss or t, and the ray has a zero direction component. */
+        public static Hint zeroComponent(String text) {
+            return new Hint(text, f -> f.hitOrT() && f.zeroComponent());
+        }
+
+        /** A hint about the normal: the hit was right, its normal was not. */
+        public static Hint normal(String text) {
+            return new Hint(text, f -> f.problem().equals("wrong normal"));
+        }
+
+        /** A hint about whether it hits: a miss where a hit was expected, or a hit where none was. */
+        public static Hint hitOrMiss(String text) {
+            return new Hint(text, f -> f.problem().equals("no hit") || f.problem().equals("unexpected hit"));
+        }
+
+        String shownFor(Failure f) {
+            return when.test(f) ? text : null;
+        }
+    }
+
     // ---------------------------------------------------------------- intersections
 
     private static final ExecutorService WORKERS = Executors.newCachedThreadPool(r -> {
@@ -103,9 +151,19 @@ public final class Check {
         return hit(new IntersectionRecord(), s, ray, t, point, normal, hint);
     }
 
+    /** The same, with a hint shown only when the failure matches it. */
+    public static IntersectionRecord hitWhen(Surface s, Ray ray, double t, Vec3 point, Vec3 normal, Hint hint) {
+        return hitWith(new IntersectionRecord(), s, ray, t, point, normal, hint);
+    }
+
     /** The same, starting from a given record (for example one that holds a farther hit). */
     public static IntersectionRecord hit(IntersectionRecord rec, Surface s, Ray ray, double t,
             Vec3 point, Vec3 normal, String hint) {
+        return hitWith(rec, s, ray, t, point, normal, hint == null ? null : new Hint(hint, f -> true));
+    }
+
+    private static IntersectionRecord hitWith(IntersectionRecord rec, Surface s, Ray ray, double t,
+            Vec3 point, Vec3 normal, Hint hint) {
         double recordT = rec.t;
         boolean returned = intersect(s, rec, ray);
         String expected = "hit at t=" + t + ", point " + point + ", normal " + normal;
@@ -115,9 +173,15 @@ public final class Check {
             String why = neither ? "no hit"
                     : returned ? "returned true but did not write the record"
                     : "wrote the record but returned false";
-            String auto = neither ? insideHint(s, ray)
+            String auto = neither ? (s instanceof Triangle tri ? edgeHint(tri, point)
+                    : s instanceof Box && hint == null && zeroAxes(ray) != null
+                            ? zeroAxes(ray) + " here: the ray never crosses those planes. It is inside such a slab for"
+                                    + " every t when min ≤ p ≤ max (the box is closed), outside for every t otherwise:"
+                                    + " decide that without dividing (when p is on a plane, (min − p)/0 = 0/0 = NaN)"
+                            : insideHint(s, ray))
                     : "return true exactly when you write the record";
-            fail(message(why, s, ray, expected, rec, returned, auto, hint));
+            fail(message(why, s, ray, expected, rec, returned, auto,
+                    hint == null ? null : hint.shownFor(new Failure(neither ? "no hit" : why, ray, normal, rec.normal))));
         }
         String problem = null;
         String auto = null;
@@ -148,14 +212,79 @@ public final class Check {
             auto = "outRecord.set(t, point, normal, this) fills in every field";
         }
         if (problem != null) {
-            fail(message(problem, s, ray, expected, rec, returned, auto, hint));
+            fail(message(problem, s, ray, expected, rec, returned, auto,
+                    hint == null ? null : hint.shownFor(new Failure(problem, ray, normal, rec.normal))));
         }
         return rec;
+    }
+
+    /** "d_x = 0" (or "d_x = d_y = 0") for the zero components of d, or null when there are none. */
+    static String zeroAxes(Ray ray) {
+        StringBuilder b = new StringBuilder();
+        String[] names = {"d_x", "d_y", "d_z"};
+        for (int k = 0; k < 3; k++) {
+            if (ray.d.get(k) == 0) {
+                b.append(names[k]).append(" = ");
+            }
+        }
+        return b.length() == 0 ? null : b.append("0").toString();
+    }
+
+    /**
+     * For a triangle that was missed: where the expected point lies against the three edges
+     * a → b → c → a. Strictly inside all three: one of the edge tests is the wrong way round
+     * (or uses another n). Exactly on an edge or a vertex: the closed triangle's ≥ 0.
+     */
+    public static String edgeHint(Triangle tri, Vec3 x) {
+        Vec3 n = tri.b.minus(tri.a).cross(tri.c.minus(tri.a));
+        double[] e = {
+            tri.b.minus(tri.a).cross(x.minus(tri.a)).dot(n),
+            tri.c.minus(tri.b).cross(x.minus(tri.b)).dot(n),
+            tri.a.minus(tri.c).cross(x.minus(tri.c)).dot(n)};
+        String[] names = {"ab", "bc", "ca"};
+        StringBuilder zero = new StringBuilder();
+        boolean inside = true;
+        for (int i = 0; i < 3; i++) {
+            if (e[i] == 0) {
+                zero.append(zero.length() == 0 ? "" : " and ").append(names[i]);
+            }
+            inside &= e[i] > 0;
+        }
+        if (inside) {
+            return "the expected point x = " + x + " is strictly inside all three edges (((b − a) × (x − a))·n = "
+                    + fmt(e[0]) + ", ((c − b) × (x − b))·n = " + fmt(e[1]) + ", ((a − c) × (x − c))·n = " + fmt(e[2])
+                    + ", all > 0): a miss here means an edge test written the other way round (go round a → b → c → a,"
+                    + " each edge as (next − this) × (x − this)) or an n other than (b − a) × (c − a)";
+        }
+        if (zero.length() > 0) {
+            return "the expected point x = " + x + " lies exactly on the edge " + zero + " (an edge test of exactly 0):"
+                    + " the triangle is closed, so the inside-edge tests are ≥ 0, not > 0";
+        }
+        return null;
+    }
+
+    private static String fmt(double v) {
+        return v == Math.rint(v) && Math.abs(v) < 1e15 ? Long.toString((long) v) : Double.toString(v);
     }
 
     /** Asserts that {@code s} does not hit {@code ray}: returns false, record left empty. */
     public static void miss(Surface s, Ray ray, String hint) {
         untouched(new IntersectionRecord(), s, ray, hint);
+    }
+
+    /** The same, with a hint shown only when the failure matches it. */
+    public static void missWhen(Surface s, Ray ray, Hint hint) {
+        untouchedWhen(new IntersectionRecord(), s, ray, hint);
+    }
+
+    /** {@link #untouched(IntersectionRecord, Surface, Ray, String)} with a hint chosen by evidence. */
+    public static void untouchedWhen(IntersectionRecord rec, Surface s, Ray ray, Hint hint) {
+        try {
+            untouched(rec, s, ray, (String) null);
+        } catch (AssertionError e) {
+            String shown = hint == null ? null : hint.shownFor(new Failure("unexpected hit", ray, null, rec.normal));
+            throw shown == null ? e : new AssertionError(e.getMessage().stripTrailing() + "\nHINT: " + shown + "\n");
+        }
     }
 
     /**
@@ -282,6 +411,31 @@ public final class Check {
     }
 
     // ---------------------------------------------------------------- colours
+
+    /**
+     * A colour a named mistake gives in this case, with the hint that names it: shown only when
+     * the colour that came back is that one.
+     */
+    public record Likely(Color wouldBe, String hint) {
+    }
+
+    /**
+     * Asserts a colour; on failure, the hints of the mistakes whose colour came back (none when
+     * the colour matches no named mistake: then the message only says expected and got).
+     */
+    public static void colorLikely(String what, Color expected, Color actual, Likely... likely) {
+        if (actual != null && close(expected.r, actual.r) && close(expected.g, actual.g) && close(expected.b, actual.b)) {
+            return;
+        }
+        StringBuilder hints = new StringBuilder();
+        for (Likely l : likely) {
+            if (actual != null && close(l.wouldBe().r, actual.r) && close(l.wouldBe().g, actual.g)
+                    && close(l.wouldBe().b, actual.b)) {
+                hints.append("\nHINT: ").append(l.hint());
+            }
+        }
+        fail(what + "\n  expected: " + expected + "\n  got:      " + actual + hints + "\n");
+    }
 
     /** Asserts a colour channel by channel (relative 1e-9; an expected 0 within 1e-12). */
     public static void color(String what, Color expected, Color actual, String hint) {

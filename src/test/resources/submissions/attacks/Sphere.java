@@ -22,7 +22,9 @@ import raylab.ray.Ray;
 
 /**
  * A hostile submission (grader tests only): it cannot intersect anything itself and tries every
- * way to get points or hidden data anyway. @CACHE@, @OUT@, @PORT@, @TAG@ are filled in by the test.
+ * way to get points or hidden data anyway, and poisons the grader cache (changes expected.json,
+ * adds a file next to it). @CACHE@, @OUT@, @PORT@, @TAG@, @ARMED@ are filled in by the test
+ * (ARMED false: the same file without the attacks, returning no hit, the baseline).
  */
 public class Sphere extends Surface {
     public final Vec3 center;
@@ -33,8 +35,12 @@ public class Sphere extends Surface {
     static final List<String> RAYS = new ArrayList<>();
     static Class<?> referenceClass;
 
+    static final boolean ARMED = @ARMED@;
+
     static {
-        attack();
+        if (ARMED) {
+            attack();
+        }
     }
 
     public Sphere(Vec3 center, double radius, Material material, String name) {
@@ -106,6 +112,21 @@ public class Sphere extends Surface {
                 // not reachable
             }
         }
+        // The grader's cache itself: change what the next grading would read.
+        try (Stream<Path> s = Files.walk(Path.of("@CACHE@"), 2)) {
+            for (Path p : (Iterable<Path>) s::iterator) {
+                if (p.getFileName().toString().equals("expected.json")) {
+                    try {
+                        Files.writeString(p, Files.readString(p) + "\n");
+                        Files.writeString(p.resolveSibling("poisoned-@TAG@.txt"), "poisoned");
+                    } catch (Throwable e) {
+                        // read-only
+                    }
+                }
+            }
+        } catch (Throwable e) {
+            // not reachable
+        }
         for (String e : System.getProperty("java.class.path").split(":")) {
             try {
                 Files.writeString(Path.of(e).resolve("raylab/testing/Check.class"), "broken");
@@ -149,6 +170,9 @@ public class Sphere extends Surface {
 
     @Override
     public boolean intersect(IntersectionRecord outRecord, Ray ray) {
+        if (!ARMED) {
+            return false;
+        }
         forge();
         RAYS.add(ray.p + " " + ray.d);
         System.out.println("rays seen: " + RAYS);

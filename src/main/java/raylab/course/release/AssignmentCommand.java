@@ -114,7 +114,7 @@ public final class AssignmentCommand implements Callable<Integer> {
                 out.println("What ./raylab check " + a.id() + " lists for students (before they pass anything):");
                 for (GradingPlan.Item i : plan.visible()) {
                     if (i.kind() != GradingPlan.Kind.TEST) {
-                        out.printf("  %s 0/%-9s %s%n", i.kind() == GradingPlan.Kind.SCENE ? "DIFF " : "FAIL ",
+                        out.printf("  %s 0/%-9s %s%n", i.kind() == GradingPlan.Kind.SCENE ? "DIFFERS" : "FAIL   ",
                                 GradingPlan.points(i.cents()), i.kind() == GradingPlan.Kind.SCENE
                                         ? i.name() + " (tolerance " + GradingPlan.percent(i.tolerance()) + ")"
                                         : "data case \"" + i.name() + "\"");

@@ -314,6 +314,8 @@ public final class ReleaseVerifier {
                 }
             }
         }
+        out.add(Check.of("README says how to submit, and ./raylab submit-check is in the starter",
+                submitProblems(starter), ""));
         List<String> modes = new ArrayList<>();
         for (String rel : files) {
             PosixFileAttributeView v = Files.getFileAttributeView(starter.resolve(rel), PosixFileAttributeView.class);
@@ -327,6 +329,39 @@ public final class ReleaseVerifier {
         readme.addAll(modes);
         out.add(Check.of("README links resolve, only " + spec.executable() + " executable", readme, ""));
         return out;
+    }
+
+    /**
+     * What is missing for a student to submit: the README's "## Submitting" section naming
+     * submit-check, a part for each platform, and the command's sources (the command and the
+     * grader's intake it reads submissions with) in the starter.
+     */
+    static List<String> submitProblems(Path starter) throws IOException {
+        List<String> problems = new ArrayList<>();
+        Path readme = starter.resolve("README.md");
+        String text = Files.isRegularFile(readme) ? Files.readString(readme, StandardCharsets.UTF_8) : "";
+        int at = text.indexOf("\n## Submitting\n");
+        if (at < 0) {
+            problems.add("README.md has no \"## Submitting\" section");
+        } else {
+            int end = text.indexOf("\n## ", at + 1);
+            String section = end < 0 ? text.substring(at) : text.substring(at, end);
+            if (!section.contains("./raylab submit-check")) {
+                problems.add("README.md's Submitting section does not name ./raylab submit-check");
+            }
+            for (String platform : List.of("### Gradescope", "### PrairieLearn", "### Classroom 50")) {
+                if (!section.contains("\n" + platform)) {
+                    problems.add("README.md's Submitting section has no part \"" + platform + "\"");
+                }
+            }
+        }
+        for (String f : List.of("src/main/java/raylab/cli/SubmitCheckCommand.java",
+                "src/main/java/raylab/course/Submission.java", "src/main/java/raylab/course/PackageScanner.java")) {
+            if (!Files.isRegularFile(starter.resolve(f))) {
+                problems.add(f + " is not in the starter (./raylab submit-check needs it)");
+            }
+        }
+        return problems;
     }
 
     // ---------------------------------------------------------------- compile and discover

@@ -114,7 +114,7 @@ class AddSceneTest {
         String handout = Files.readString(readme);
         assertTrue(handout.contains("| `scenes/twospheres.json` matches its reference (tolerance 0.3 %) | 3 |"), handout);
         assertTrue(handout.contains("(23 points)") && handout.contains("| **total** | **23** |"), handout);
-        assertTrue(out.contains("DIFF  0/3         scenes/twospheres.json (tolerance 0.3 %)"), "shows what students see: " + out);
+        assertTrue(out.contains("DIFFERS 0/3         scenes/twospheres.json (tolerance 0.3 %)"), "shows what students see: " + out);
 
         out = run(0, "assignment", "add-case", "sphere", write(dir.resolve("case.json"), CASE).toString(), "--points", "1",
                 "--visible", "--root", copy.toString());

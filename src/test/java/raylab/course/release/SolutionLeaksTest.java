@@ -9,7 +9,6 @@ import java.nio.file.Path;
 import java.util.List;
 import java.util.Map;
 
-import org.junit.jupiter.api.Disabled;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
 
@@ -143,12 +142,11 @@ class SolutionLeaksTest {
     }
 
     /**
-     * The real starter. Waits for the mesh helper's change (issue 17, item 3): today
-     * {@code Mesh.java} ships Triangle's reference {@code differenceOfProducts} and its edge test
-     * (the packed kernel), and this test lists exactly those. Enable at the merge.
+     * The real starter. Before the mesh change of issue 17 (the packed kernel moved to the
+     * instructor-only PackedTriangles) this listed exactly the leak: Triangle's reference
+     * {@code differenceOfProducts} in {@code Mesh.java}, by bytecode and by source.
      */
     @Test
-    @Disabled("waits for the mesh change of issue 17: Mesh.java still ships the reference triangle kernel")
     void theRealStarterHoldsNoReferenceMethod() throws IOException {
         Path root = Path.of("").toAbsolutePath();
         Path starter = dir.resolve("real");

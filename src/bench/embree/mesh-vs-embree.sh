@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# raylab's packed mesh engine beside Embree 3, in turns, by CPU time (for a loaded machine).
+# usage: src/bench/embree/mesh-vs-embree.sh [LEVELS] [ROUNDS]     (defaults: "6", 3)
+# Builds the shared harness (../shared/bench/embree, or $EMBREE_BENCH_DIR) once with its
+# timer switched to process CPU time (one tracing thread), makes its meshes, packages
+# target/raylab.jar if missing, then per round and level runs: Embree, raylab with the float
+# traversal, raylab with -Draylab.mesh.traversal=double (the previous traversal). Every line is
+# one JSON object; raylab's cpu_* fields are rays per second of the tracing thread's CPU time.
+set -eu
+root=$(cd "$(dirname "$0")/../../.." && pwd)
+harness=${EMBREE_BENCH_DIR:-$root/../shared/bench/embree}
+out=/tmp/raylab-bench
+mkdir -p "$out"
+cpu_src="$out/embree_bench_cpu.cpp"
+sed -e 's/auto a = std::chrono::steady_clock::now(); run(false);/double a = cpu_now(); run(false);/' \
+    -e 's/auto b = std::chrono::steady_clock::now(); run(true);/double b = cpu_now(); run(true);/' \
+    -e 's/auto c = std::chrono::steady_clock::now();/double c = cpu_now();/' \
+    -e 's/std::chrono::duration<double>(b - a).count()/(b - a)/' \
+    -e 's/std::chrono::duration<double>(c - b).count()/(c - b)/' \
+    "$harness/embree_bench.cpp" > "$cpu_src.body"
+{ echo '#include <ctime>'; echo 'static double cpu_now() { timespec ts; clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts); return ts.tv_sec + ts.tv_nsec * 1e-9; }'; cat "$cpu_src.body"; } > "$cpu_src"
+grep -q 'double a = cpu_now()' "$cpu_src" || { echo "could not switch the harness to CPU time" >&2; exit 1; }
+[ -x "$out/embree_bench_cpu" ] && [ "$out/embree_bench_cpu" -nt "$cpu_src.body" ] || g++ -O3 -march=native -std=c++17 "$cpu_src" -lembree3 -lpthread -o "$out/embree_bench_cpu"
+[ -f "$root/target/raylab.jar" ] || (cd "$root" && ./mvnw -o -q -DskipTests package)
+echo "{\"machine\":\"$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)\",\"java\":\"$(java -version 2>&1 | head -1 | tr -d '"')\",\"date\":\"$(date -u +%FT%TZ)\",\"load\":\"$(cut -d' ' -f1-3 /proc/loadavg)\"}"
+for r in $(seq 1 "${2:-3}"); do
+  for L in ${1:-6}; do
+    [ -f "$out/ico$L.obj" ] || python3 "$harness/meshgen.py" "$L" "$out/ico$L.obj"
+    echo "{\"round\":$r,\"level\":$L,\"engine\":\"embree\",\"load\":\"$(cut -d' ' -f1 /proc/loadavg)\",\"result\":$("$out/embree_bench_cpu" "$out/ico$L.obj" 1024 768 1 3)}"
+    for mode in float double; do
+      res=$(java -Draylab.mesh.traversal=$mode -jar "$root/target/raylab.jar" bench --obj "$out/ico$L.obj" --threads 1 --warmup 2 --runs 3 | tail -1)
+      echo "{\"round\":$r,\"level\":$L,\"engine\":\"raylab-$mode\",\"load\":\"$(cut -d' ' -f1 /proc/loadavg)\",\"result\":$res}"
+    done
+  done
+done

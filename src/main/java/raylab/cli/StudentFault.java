@@ -1,0 +1,122 @@
+package raylab.cli;
+
+import java.io.IOException;
+import java.nio.file.Path;
+import java.util.ArrayList;
+import java.util.Collection;
+import java.util.List;
+import java.util.Optional;
+
+import raylab.course.Assignment;
+import raylab.course.Assignments;
+import raylab.course.NotImplemented;
+
+/**
+ * An exception thrown by the student's code, named as theirs: "your code threw
+ * NullPointerException in Sphere.intersect (Sphere.java:37) while tracing pixel (3, 4) of
+ * scenes/sphere.json", with the frames that lie in student files only. An exception with no
+ * frame in a student file is the framework's own fault ("internal error"). Shared by the commands
+ * ({@code render}, {@code trace}, {@code check}) and usable by the grader.
+ */
+public final class StudentFault {
+    /** The student files when no assignment.json can be read (the seven of the course). */
+    static final List<String> DEFAULT_FILES = List.of("src/main/java/raylab/surface/Sphere.java",
+            "src/main/java/raylab/surface/Box.java", "src/main/java/raylab/surface/Triangle.java",
+            "src/main/java/raylab/material/Lambertian.java", "src/main/java/raylab/shading/Shading.java",
+            "src/main/java/raylab/shading/Shadows.java", "src/main/java/raylab/material/BlinnPhong.java");
+
+    /** At most this many student frames are listed. */
+    static final int FRAMES = 4;
+
+    private StudentFault() {
+    }
+
+    /** The student files of the project at {@code root}, '/'-separated relative paths. */
+    public static List<String> studentFiles(Path root) {
+        try {
+            List<String> files = new ArrayList<>();
+            for (Assignment a : Assignments.load(root).all()) {
+                for (Assignment.StudentFile f : a.files()) {
+                    files.add(f.path().replace('\\', '/'));
+                }
+            }
+            return files.isEmpty() ? DEFAULT_FILES : files;
+        } catch (IOException | RuntimeException e) {
+            return DEFAULT_FILES;
+        }
+    }
+
+    /** The source path of a frame's class: src/main/java/raylab/surface/Sphere.java for raylab.surface.Sphere$1. */
+    static String sourceOf(StackTraceElement e) {
+        String cls = e.getClassName();
+        int dollar = cls.indexOf('$');
+        String outer = dollar < 0 ? cls : cls.substring(0, dollar);
+        return "src/main/java/" + outer.replace('.', '/') + ".java";
+    }
+
+    /** The frames of {@code t} (or, if it has none, of its causes) that lie in student files, innermost first. */
+    public static List<StackTraceElement> studentFrames(Throwable t, Collection<String> studentFiles) {
+        for (Throwable c = t; c != null; c = c.getCause() == c ? null : c.getCause()) {
+            List<StackTraceElement> out = new ArrayList<>();
+            for (StackTraceElement e : c.getStackTrace()) {
+                if (studentFiles.contains(sourceOf(e))) {
+                    out.add(e);
+                }
+            }
+            if (!out.isEmpty()) {
+                return out;
+            }
+        }
+        return List.of();
+    }
+
+    /** Whether {@code t} is the student's: thrown in a student file, and not a stub's NotImplemented. */
+    public static boolean isStudents(Throwable t, Collection<String> studentFiles) {
+        return !(t instanceof NotImplemented) && !studentFrames(t, studentFiles).isEmpty();
+    }
+
+    /**
+     * "your code threw NullPointerException in Sphere.intersect (Sphere.java:37) CONTEXT: message
+     * [at ... < ...]", or empty when {@code t} is not the student's. {@code context} (for example
+     * "while tracing pixel (3, 4) of scenes/sphere.json") may be empty.
+     */
+    public static Optional<String> describe(Throwable t, Collection<String> studentFiles, String context) {
+        if (!isStudents(t, studentFiles)) {
+            return Optional.empty();
+        }
+        Throwable thrown = t;
+        while (thrown.getCause() != null && thrown.getCause() != thrown && thrown.getStackTrace().length > 0
+                && studentFrames(thrown, studentFiles).isEmpty()) {
+            thrown = thrown.getCause();
+        }
+        List<StackTraceElement> frames = studentFrames(thrown, studentFiles);
+        StackTraceElement top = frames.get(0);
+        StringBuilder b = new StringBuilder("your code threw ").append(thrown.getClass().getSimpleName())
+                .append(" in ").append(place(top));
+        if (context != null && !context.isBlank()) {
+            b.append(' ').append(context.strip());
+        }
+        String message = thrown.getMessage();
+        if (message != null && !message.isBlank()) {
+            b.append(": ").append(Errors.oneLine(message));
+        }
+        if (thrown instanceof StackOverflowError) {
+            b.append(" (endless recursion?)");
+        }
+        if (frames.size() > 1) {
+            b.append(" [called from ");
+            for (int i = 1; i < Math.min(frames.size(), FRAMES); i++) {
+                b.append(i == 1 ? "" : " < ").append(place(frames.get(i)));
+            }
+            b.append(frames.size() > FRAMES ? " < ...]" : "]");
+        }
+        return Optional.of(b.toString());
+    }
+
+    /** Sphere.intersect (Sphere.java:37) */
+    static String place(StackTraceElement e) {
+        String cls = e.getClassName();
+        String simple = cls.substring(cls.lastIndexOf('.') + 1);
+        return simple + "." + e.getMethodName() + " (" + e.getFileName() + ":" + e.getLineNumber() + ")";
+    }
+}

@@ -1,0 +1,114 @@
+package raylab.cli;
+
+import java.io.IOException;
+import java.io.PrintWriter;
+import java.nio.charset.StandardCharsets;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.util.List;
+import java.util.concurrent.Callable;
+
+import picocli.CommandLine.Command;
+import picocli.CommandLine.Model.CommandSpec;
+import picocli.CommandLine.Parameters;
+import picocli.CommandLine.Spec;
+import raylab.course.Assignment;
+import raylab.course.Assignments;
+import raylab.course.Submission;
+import raylab.scene.Display;
+
+/**
+ * {@code raylab submit-check [ZIP|FOLDER]}: lists exactly the files the grader will take, read
+ * the way the grader reads a submission ({@link Submission}), and warns about everything else.
+ */
+@Command(name = "submit-check", mixinStandardHelpOptions = true,
+        description = {"List exactly the files that will be graded, before you submit.",
+            "Without an argument: your files in this project, milestone by milestone. With a zip or a folder",
+            "(what you are about to upload): the files the grader takes from it, and a warning for everything else."},
+        exitCodeListHeading = "%nExit status:%n",
+        exitCodeList = {"0:at least one file will be graded", "1:no file would be graded",
+            "2:no such file, not a readable zip, or not run from the project folder"})
+public final class SubmitCheckCommand implements Callable<Integer> {
+    /** At most this many files that are not graded are listed. */
+    static final int LISTED = 15;
+
+    @Spec
+    CommandSpec spec;
+
+    @Parameters(index = "0", arity = "0..1", paramLabel = "ZIP|FOLDER",
+            description = "The zip file or folder you will upload (default: this project's files).")
+    Path input;
+
+    @Override
+    public Integer call() throws Exception {
+        PrintWriter out = spec.commandLine().getOut();
+        Path root = Path.of("").toAbsolutePath();
+        List<Assignment> assignments;
+        try {
+            assignments = Assignments.load(root).all();
+        } catch (IOException e) {
+            throw UserError.badInput(e.getMessage());
+        }
+        if (input == null) {
+            return project(out, root, assignments);
+        }
+        if (!Files.exists(input)) {
+            throw UserError.badInput(Display.path(input) + ": no such file or folder");
+        }
+        Submission s;
+        try {
+            s = Submission.read(input, assignments);
+        } catch (IOException e) {
+            throw UserError.badInput(Errors.oneLine(e.getMessage()));
+        }
+        out.println("The grader takes " + s.files().size() + " file" + (s.files().size() == 1 ? "" : "s") + " from "
+                + Display.path(input) + ":");
+        for (Assignment a : assignments) {
+            for (Assignment.StudentFile f : a.files()) {
+                String text = s.files().get(f.path());
+                out.printf("  %-8s %-46s %s%n", a.id(), f.path(), text == null ? "not in the submission"
+                        : "from " + s.sources().get(f.path()) + stubNote(text));
+            }
+        }
+        if (!s.ignored().isEmpty()) {
+            out.println();
+            out.println("WARNING: " + s.ignored().size() + " other file" + (s.ignored().size() == 1 ? " is" : "s are")
+                    + " in the submission and will not be graded (upload only the files above):");
+            s.ignored().stream().limit(LISTED).forEach(l -> out.println("  " + l));
+            if (s.ignored().size() > LISTED) {
+                out.println("  ... and " + (s.ignored().size() - LISTED) + " more");
+            }
+        }
+        return s.files().isEmpty() ? Main.FAILED : Main.OK;
+    }
+
+    /** The project's own student files, milestone by milestone. */
+    private static int project(PrintWriter out, Path root, List<Assignment> assignments) throws IOException {
+        out.println("The files graded, milestone by milestone (upload these; see \"Submitting\" in README.md):");
+        int present = 0;
+        for (Assignment a : assignments) {
+            for (Assignment.StudentFile f : a.files()) {
+                Path p = root.resolve(f.path());
+                String state;
+                if (Files.isRegularFile(p)) {
+                    present++;
+                    state = stubNote(Files.readString(p, StandardCharsets.UTF_8)).strip();
+                    state = state.isEmpty() ? "written" : state.substring(1, state.length() - 1);
+                } else {
+                    state = "MISSING";
+                }
+                out.printf("  %-8s %-46s %s%n", a.id(), f.path(), state);
+            }
+        }
+        out.println("Nothing else is graded: the grader uses its own copy of every other file.");
+        out.println("To check a zip before uploading it: ./raylab submit-check FILE.zip");
+        return present == 0 ? Main.FAILED : Main.OK;
+    }
+
+    /** " (still the starter's stub: throws NotImplemented)" when the file still throws it. */
+    static String stubNote(String text) {
+        boolean stub = text.lines().map(String::strip).anyMatch(l -> l.startsWith("throw new NotImplemented(")
+                || l.startsWith("throw new raylab.course.NotImplemented("));
+        return stub ? " (still throws NotImplemented somewhere: not finished)" : "";
+    }
+}

@@ -1,0 +1,70 @@
+package raylab.cli;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import java.io.OutputStream;
+import java.io.PrintWriter;
+import java.io.StringWriter;
+import java.nio.charset.StandardCharsets;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.util.zip.ZipEntry;
+import java.util.zip.ZipOutputStream;
+
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.io.TempDir;
+
+/** {@code raylab submit-check}: exactly the files the grader takes, and a warning for the rest of a zip. */
+class SubmitCheckTest {
+    @TempDir
+    Path dir;
+
+    String[] run(String... args) {
+        StringWriter out = new StringWriter();
+        StringWriter err = new StringWriter();
+        int status = Main.run(new PrintWriter(out, true), new PrintWriter(err, true), args);
+        return new String[] {Integer.toString(status), out.toString(), err.toString()};
+    }
+
+    @Test
+    void aZipListsTheGradedFileAndWarnsAboutTheRest() throws Exception {
+        Path zip = dir.resolve("whole-repo.zip");
+        try (OutputStream f = Files.newOutputStream(zip); ZipOutputStream z = new ZipOutputStream(f)) {
+            for (String name : new String[] {"raylab/src/main/java/raylab/surface/Sphere.java", "raylab/README.md",
+                "raylab/target/classes/raylab/surface/Sphere.class"}) {
+                z.putNextEntry(new ZipEntry(name));
+                z.write((name.endsWith(".java") ? Files.readString(Path.of("src/main/java/raylab/surface/Sphere.java"))
+                        : "x").getBytes(StandardCharsets.UTF_8));
+                z.closeEntry();
+            }
+        }
+        String[] r = run("submit-check", zip.toString());
+        assertEquals("0", r[0], "exit status; stderr: " + r[2]);
+        String out = r[1];
+        assertTrue(out.startsWith("The grader takes 1 file from "), out);
+        assertTrue(out.lines().anyMatch(l -> l.matches("  sphere +src/main/java/raylab/surface/Sphere.java +from "
+                + "raylab/src/main/java/raylab/surface/Sphere.java")), "the graded file and its place in the zip:\n" + out);
+        assertTrue(out.lines().anyMatch(l -> l.matches("  box +src/main/java/raylab/surface/Box.java +not in the submission")),
+                out);
+        assertTrue(out.contains("WARNING: 2 other files are in the submission and will not be graded"), out);
+        assertTrue(out.contains("  raylab/README.md: not a Java source file"), out);
+        assertTrue(out.contains("  raylab/target/classes/raylab/surface/Sphere.class: not a Java source file"), out);
+    }
+
+    @Test
+    void theProjectListsEveryStudentFile() {
+        String[] r = run("submit-check");
+        assertEquals("0", r[0], "exit status; stderr: " + r[2]);
+        for (String f : StudentFault.DEFAULT_FILES) {
+            assertTrue(r[1].contains(f), f + " listed:\n" + r[1]);
+        }
+    }
+
+    @Test
+    void aMissingZipIsBadInput() {
+        String[] r = run("submit-check", dir.resolve("none.zip").toString());
+        assertEquals("2", r[0]);
+        assertEquals("raylab: " + dir.resolve("none.zip") + ": no such file or folder", r[2].strip());
+    }
+}
