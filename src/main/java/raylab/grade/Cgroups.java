@@ -108,7 +108,9 @@ final class Cgroups {
                 return new Group(made);
             }
             for (String controller : List.of("pids", "cpu")) {
-                Path parent = ROOT.resolve(controller).resolve("raylab");
+                // Under this process's own group: a child stays within every limit the grader
+                // itself is held to (a container's CPU quota, an emulated Gradescope cgroup).
+                Path parent = ROOT.resolve(controller).resolve(ownV1(controller)).resolve("raylab");
                 if (!Files.isRegularFile(ROOT.resolve(controller).resolve("cgroup.procs"))) {
                     continue;
                 }
@@ -158,6 +160,24 @@ final class Cgroups {
         } catch (IOException e) {
             // nothing to clean
         }
+    }
+
+    /**
+     * cgroup v1: the path of this process's group in the hierarchy of {@code controller}, relative
+     * ("" at the root), from {@code /proc/self/cgroup} lines {@code N:controller[,...]:/path}.
+     */
+    static String ownV1(String controller) {
+        try {
+            for (String line : Files.readAllLines(Path.of("/proc/self/cgroup"))) {
+                String[] f = line.split(":", 3);
+                if (f.length == 3 && java.util.Arrays.asList(f[1].split(",")).contains(controller)) {
+                    return f[2].replaceFirst("^/+", "");
+                }
+            }
+        } catch (IOException | RuntimeException e) {
+            // no /proc: the root
+        }
+        return "";
     }
 
     /** One core's worth per child where there are at least two (else only the fair share). */

@@ -58,7 +58,7 @@ class AddSceneTest {
             """;
 
     private static Path copy(Path root, Path to) throws IOException {
-        for (String d : List.of("assignments", "scenes", "grader", "src/test/java")) {
+        for (String d : List.of("assignments", "scenes", "grader", "src/main/java", "src/test/java")) {
             try (Stream<Path> s = Files.walk(root.resolve(d))) {
                 for (Path p : (Iterable<Path>) s::iterator) {
                     Path t = to.resolve(root.relativize(p).toString());
