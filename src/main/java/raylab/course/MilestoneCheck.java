@@ -296,6 +296,24 @@ public final class MilestoneCheck {
             }
         }
 
+        // The scenes render in child JVMs of their own while the tests run: on two cores the
+        // renders and the tests overlap instead of taking turns.
+        java.util.concurrent.ExecutorService renders = java.util.concurrent.Executors.newFixedThreadPool(
+                Math.max(1, Math.min(2, Runtime.getRuntime().availableProcessors())), r -> {
+                    Thread t = new Thread(r, "check-render");
+                    t.setDaemon(true);
+                    return t;
+                });
+        Map<Assignment.GradedScene, java.util.concurrent.Future<SceneOutcome>> rendered = new LinkedHashMap<>();
+        for (Assignment a : selected) {
+            List<String> files = a.files().stream().map(Assignment.StudentFile::path).toList();
+            for (Assignment.GradedScene g : a.scenes()) {
+                progress.accept("rendering " + g.scene() + " ...");
+                rendered.put(g, renders.submit(() -> render(root, g, own, threads, files)));
+            }
+        }
+        renders.shutdown();
+
         Map<String, List<TestResult>> results = new LinkedHashMap<>();
         if (!milestoneOfClass.isEmpty()) {
             progress.accept("running the tests ...");
@@ -324,13 +342,28 @@ public final class MilestoneCheck {
         for (Assignment a : selected) {
             List<SceneOutcome> scenes = new ArrayList<>();
             for (Assignment.GradedScene g : a.scenes()) {
-                progress.accept("rendering " + g.scene() + " ...");
-                scenes.add(render(root, g, own, threads, a.files().stream().map(Assignment.StudentFile::path).toList()));
+                scenes.add(finished(g, rendered.get(g)));
             }
             out.add(new Outcome(a, results.getOrDefault(a.id(), List.of()), problems.getOrDefault(a.id(), ""),
                     scenes, GradingPlan.of(root, a)));
         }
         return out;
+    }
+
+    /** The outcome of a render started in the background. */
+    private static SceneOutcome finished(Assignment.GradedScene g, java.util.concurrent.Future<SceneOutcome> f)
+            throws IOException {
+        try {
+            return f.get();
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+            return new SceneOutcome(g, SceneStatus.ERROR, "interrupted");
+        } catch (java.util.concurrent.ExecutionException e) {
+            if (e.getCause() instanceof IOException io) {
+                throw io;
+            }
+            throw new IllegalStateException(e.getCause());
+        }
     }
 
     /** The data-case checker: shipped in the starter, the grader's copy in the instructor's tree. */
