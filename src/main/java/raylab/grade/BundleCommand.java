@@ -175,13 +175,16 @@ public final class BundleCommand implements Callable<Integer> {
         return 0;
     }
 
-    /** What grading reads besides the jar: assignments, the grader's tests, scenes, helpers, visible tests. */
+    /** What grading reads besides the jar: assignments, the grader's tests, scenes, helpers, visible tests, framework sources. */
     static List<Path> graderFiles(Path r, Assignments all) throws IOException {
         List<Path> files = new ArrayList<>();
         files.addAll(walk(r.resolve("assignments")));
         files.addAll(walk(r.resolve("grader/tests")));
         files.addAll(walk(r.resolve("scenes")));
         files.addAll(walk(r.resolve("src/test/java/raylab/testing")));
+        // The framework's sources: the cache builds the public stubs and stand-ins from them.
+        files.addAll(walk(r.resolve("src/main/java")));
+        files.addAll(walk(r.resolve("src/main/resources")));
         for (Assignment a : all.all()) {
             for (String v : a.tests().visible()) {
                 files.add(r.resolve(v));
