@@ -53,6 +53,20 @@ public class CallRate {
                 long t2 = System.nanoTime();
                 long c2 = bean.getCurrentThreadCpuTime();
                 long s2 = StudentProcess.cpuNanosOf(p);
+                for (int i = 0; i < n; i += 4096) {
+                    List<StudentProcess.MultiCall> batch = new ArrayList<>();
+                    for (int k = i; k < Math.min(n, i + 4096); k++) {
+                        batch.add(new StudentProcess.MultiCall("raylab.surface.Sphere", "intersect", s,
+                                new Object[] {new IntersectionRecord(), rays[k]}, List.of()));
+                    }
+                    p.multi(batch);
+                }
+                long t2m = System.nanoTime();
+                long c2m = bean.getCurrentThreadCpuTime();
+                long s2m = StudentProcess.cpuNanosOf(p);
+                System.out.printf("round %d: multi by 4096 %,.0f calls/s (grader %.2f us, student %.2f us)%n", r,
+                        n / ((t2m - t2) / 1e9), (c2m - c2) / 1e3 / n, (s2m - s2) / 1e3 / n);
+                t2 = System.nanoTime();
                 for (int i = 0; i < n; i++) {
                     s.intersect(new IntersectionRecord(), rays[i]);
                 }

@@ -116,7 +116,7 @@ public final class StudentProcess implements AutoCloseable {
             }
             // The CPU time at the first look at a call is its baseline (at most one tick late):
             // reading /proc at every call would cost more than the call.
-            long cpu = cpuNanos(p);
+            long cpu = watchedCpuNanos(p);
             if (call != seen) {
                 seen = call;
                 baseline = starting ? 0 : cpu;
@@ -136,6 +136,31 @@ public final class StudentProcess implements AutoCloseable {
     private static void kill(Process p) {
         p.descendants().forEach(ProcessHandle::destroyForcibly);
         p.destroyForcibly();
+    }
+
+    private Process watched;
+    private List<Long> watchedPids = List.of();
+    private long pidsListed;
+
+    /**
+     * As {@link #cpuNanos}, with the process's descendants listed again only every second:
+     * listing them reads every process of the machine from /proc.
+     */
+    private long watchedCpuNanos(Process p) {
+        long now = System.nanoTime();
+        if (p != watched || now - pidsListed > 1_000_000_000L) {
+            watched = p;
+            pidsListed = now;
+            List<Long> pids = new ArrayList<>();
+            pids.add(p.pid());
+            p.descendants().forEach(d -> pids.add(d.pid()));
+            watchedPids = pids;
+        }
+        long t = 0;
+        for (long pid : watchedPids) {
+            t += ticks(pid);
+        }
+        return t * 10_000_000L;
     }
 
     /** CPU time of the current student process (0 if none runs), for measurements. */
@@ -307,6 +332,122 @@ public final class StudentProcess implements AutoCloseable {
         });
     }
 
+    /**
+     * One call of a {@link #multi} frame: the method, its target and arguments (records as they
+     * are before the call; they hold the student's record after it), the callbacks it is expected
+     * to ask with their answers; and after the call its result or exception and which of those
+     * answers it used.
+     */
+    public static final class MultiCall {
+        final String cls;
+        final String name;
+        final Object target;
+        final Object[] args;
+        final List<Answered> answers;
+        Object result;
+        RuntimeException thrown;
+        int[] used = new int[0];
+
+        public MultiCall(String cls, String name, Object target, Object[] args, List<Answered> answers) {
+            this.cls = cls;
+            this.name = name;
+            this.target = target;
+            this.args = args;
+            this.answers = answers;
+        }
+
+        public Object result() {
+            return result;
+        }
+
+        public RuntimeException thrown() {
+            return thrown;
+        }
+
+        public int[] used() {
+            return used;
+        }
+
+        public Object[] args() {
+            return args;
+        }
+    }
+
+    /**
+     * A callback answered in advance: the grader's object asked, the operation, the arguments (a
+     * record as it is before the question), the answer and the record arguments after it.
+     */
+    public record Answered(Object target, byte op, Object[] args, Object result, Object[] after) {
+    }
+
+    /**
+     * Many calls in one frame each way ({@link Wire#MULTI}); callbacks not answered in advance
+     * are answered as they come. Each call's outcome is set on it.
+     */
+    public synchronized void multi(List<MultiCall> batch) {
+        run(() -> {
+            buf.reset();
+            buf.writeInt(batch.size());
+            Wire.Out q = new Wire.Out();
+            Wire.Out a = new Wire.Out();
+            for (MultiCall c : batch) {
+                buf.writeInt(method(c.cls, c.name, c.args.length));
+                Wire.writeValue(buf, c.target, refs);
+                buf.writeInt(c.args.length);
+                for (Object x : c.args) {
+                    Wire.writeValue(buf, x, refs);
+                }
+                buf.writeInt(c.answers.size());
+                for (Answered an : c.answers) {
+                    q.reset();
+                    q.writeInt(ephemeral(an.target()));
+                    q.writeByte(an.op());
+                    q.writeInt(an.args().length);
+                    for (Object x : an.args()) {
+                        Wire.writeValue(q, x, asStudent);
+                    }
+                    buf.writeBytes(q);
+                    a.reset();
+                    Wire.writeValue(a, an.result(), refs);
+                    for (Object x : an.after()) {
+                        if (x instanceof IntersectionRecord r) {
+                            Wire.writeRecord(a, r, refs);
+                        }
+                    }
+                    buf.writeBytes(a);
+                }
+            }
+            int conv = nextConv++;
+            Wire.writeFrame(out, Wire.MULTI, conv, buf);
+            out.flush();
+            calls += batch.size();
+            Wire.Frame f = await(conv, Wire.MULTI_RETURN);
+            Wire.In in = f.in();
+            int n = in.readInt();
+            if (n != batch.size()) {
+                throw new Wire.ProtocolException("answered " + n + " of " + batch.size() + " calls");
+            }
+            for (MultiCall c : batch) {
+                if (in.readByte() == 0) {
+                    c.result = Wire.readValue(in, refs);
+                    copyRecords(in, c.args);
+                } else {
+                    c.thrown = throwable(in);
+                }
+                int u = in.readInt();
+                if (u < 0 || u > c.answers.size() * 4 + 16) {
+                    throw new Wire.ProtocolException("bad count of answers used");
+                }
+                c.used = new int[u];
+                for (int i = 0; i < u; i++) {
+                    c.used[i] = in.readInt();
+                }
+            }
+            output(in.readString());
+            return null;
+        });
+    }
+
     private void output(String s) {
         if (s != null && !s.isEmpty()) {
             output.accept(s);
@@ -433,6 +574,28 @@ public final class StudentProcess implements AutoCloseable {
         public int index() {
             return index;
         }
+    }
+
+    private RuntimeException throwable(Wire.In in) throws IOException {
+        String cls = in.readString();
+        String msg = in.readString();
+        int n = in.readInt();
+        if (n < 0 || n > 100) {
+            throw new Wire.ProtocolException("bad frame count");
+        }
+        List<String> frames = new ArrayList<>();
+        for (int i = 0; i < n; i++) {
+            frames.add(in.readString());
+        }
+        if (pendingFailure != null && cls.equals("raylab.remote.StudentServer$GraderFailure")) {
+            RuntimeException p = pendingFailure;
+            pendingFailure = null;
+            return p;
+        }
+        if ("raylab.course.NotImplemented".equals(cls)) {
+            return NotImplementedAgain.of(msg);
+        }
+        return new StudentException(cls, msg, frames, "");
     }
 
     private RuntimeException thrown(Wire.In in) throws IOException {
@@ -688,7 +851,7 @@ public final class StudentProcess implements AutoCloseable {
     }
 
     /** Whether a shading point's answers want to hear toLight (traces): else no callback for it. */
-    private static boolean hearsLooks(ShadingPoint at) {
+    static boolean hearsLooks(ShadingPoint at) {
         if (ANSWERS == null) {
             return true;
         }
@@ -706,6 +869,35 @@ public final class StudentProcess implements AutoCloseable {
             return true;
         }
     }
+
+    /**
+     * The grader's objects as the student process writes them back in a callback's question:
+     * its own objects as handles, the grader's lights, surfaces and materials by number.
+     */
+    private final Wire.Refs asStudent = new Wire.Refs() {
+        @Override
+        public boolean encode(Wire.Out o, Object x) {
+            Class<?> served = servedAncestor(x.getClass());
+            if (served != null) {
+                o.writeByte(Wire.HANDLE);
+                o.writeInt(handle(x, served));
+                return true;
+            }
+            byte tag = x instanceof PointLight ? Wire.LIGHT_REF : x instanceof Surface ? Wire.REMOTE_SURFACE
+                    : x instanceof Material ? Wire.REMOTE_MATERIAL : 0;
+            if (tag == 0) {
+                return false;
+            }
+            o.writeByte(tag);
+            o.writeInt(ephemeral(x));
+            return true;
+        }
+
+        @Override
+        public Object decode(byte tag, Wire.In in) {
+            throw new UnsupportedOperationException();
+        }
+    };
 
     /** Grader side: stand-ins become handles, the grader's surfaces, materials and shading points proxies. */
     private final class Refs implements Wire.Refs {

@@ -26,25 +26,131 @@ public final class TrustedRender {
     private TrustedRender() {
     }
 
+    /** Rows per band of a batched render. */
+    static final int BAND_ROWS = 8;
+
     /** Renders one scene: the same pixels as {@link Renderer#render}. */
     public static Image render(Scene scene, String name) {
+        return render(scene, name, null);
+    }
+
+    /**
+     * Renders one scene, batching the student calls through {@code spec} if it is not null (the
+     * same pixels, bit for bit, as one call at a time: {@link Speculation}).
+     */
+    public static Image render(Scene scene, String name, Speculation spec) {
         Renderer r = new Renderer(scene, new RenderPlan(scene), Mode.FULL);
         Shader shader = new Shader(scene, r.root(), r.plan(), Mode.FULL);
         Image image = new Image(scene.width, scene.height);
         IntersectionRecord rec = new IntersectionRecord();
         RenderStats stats = new RenderStats();
-        for (int y = 0; y < scene.height; y++) {
-            for (int x = 0; x < scene.width; x++) {
-                Color c;
-                try {
-                    c = r.pixel(x, y, shader, rec, stats);
-                } catch (StudentException e) {
-                    throw e.in("while tracing pixel (" + x + ", " + y + ") of " + name);
+        if (spec == null) {
+            for (int y = 0; y < scene.height; y++) {
+                for (int x = 0; x < scene.width; x++) {
+                    image.set(x, y, pixel(r, shader, rec, stats, x, y, name));
                 }
-                image.set(x, y, c);
             }
+            return image;
+        }
+        Remote.speculate(spec);
+        try {
+            for (int y0 = 0; y0 < scene.height; y0 += BAND_ROWS) {
+                band(r, shader, rec, stats, image, y0, Math.min(scene.height, y0 + BAND_ROWS), name, spec);
+            }
+        } finally {
+            Remote.speculate(null);
         }
         return image;
+    }
+
+    private static Color pixel(Renderer r, Shader shader, IntersectionRecord rec, RenderStats stats, int x, int y,
+            String name) {
+        try {
+            return r.pixel(x, y, shader, rec, stats);
+        } catch (StudentException e) {
+            throw e.in("while tracing pixel (" + x + ", " + y + ") of " + name);
+        }
+    }
+
+    /**
+     * Rows y0 to y1 in rounds: each open pixel traced with the answers known and predictions for
+     * the rest, then the predictions checked against the student's answers in one frame, until
+     * every pixel's trace rests on the student's answers only. Failures are thrown in the order
+     * of the pixels, as a render one call at a time would meet them.
+     */
+    private static void band(Renderer r, Shader shader, IntersectionRecord rec, RenderStats stats, Image image,
+            int y0, int y1, String name, Speculation spec) {
+        int w = image.width;
+        int n = w * (y1 - y0);
+        Color[] colors = new Color[n];
+        Throwable[] failures = new Throwable[n];
+        boolean[] done = new boolean[n];
+        boolean[] oneAtATime = new boolean[n];
+        Speculation.Pixel[] traces = new Speculation.Pixel[n];
+        int open = n;
+        for (int round = 0; open > 0 && round < Speculation.MAX_ROUNDS; round++) {
+            for (int i = 0; i < n; i++) {
+                if (done[i] || oneAtATime[i]) {
+                    continue;
+                }
+                traces[i] = spec.begin();
+                colors[i] = null;
+                failures[i] = null;
+                try {
+                    colors[i] = r.pixel(i % w, y0 + i / w, shader, rec, stats);
+                } catch (Speculation.Unpredictable e) {
+                    oneAtATime[i] = true;
+                    open--;
+                } catch (RuntimeException | StackOverflowError e) {
+                    failures[i] = e;
+                } finally {
+                    spec.end();
+                }
+            }
+            spec.send();
+            for (int i = 0; i < n; i++) {
+                if (!done[i] && !oneAtATime[i]) {
+                    if (traces[i].exact()) {
+                        done[i] = true;
+                        open--;
+                    } else {
+                        spec.keep(traces[i]);
+                    }
+                }
+            }
+        }
+        for (int i = 0; i < n; i++) {
+            int x = i % w;
+            int y = y0 + i / w;
+            if (!done[i]) {
+                Color[] c = new Color[1];
+                spec.oneAtATime(() -> c[0] = pixel(r, shader, rec, stats, x, y, name));
+                image.set(x, y, c[0]);
+                continue;
+            }
+            if (failures[i] instanceof StudentException e) {
+                throw e.in("while tracing pixel (" + x + ", " + y + ") of " + name);
+            }
+            if (failures[i] instanceof RuntimeException e) {
+                throw e;
+            }
+            if (failures[i] instanceof Error e) {
+                throw e;
+            }
+            image.set(x, y, colors[i]);
+        }
+        spec.clear();
+    }
+
+    private static void writeRaw(Image image, Path file) throws java.io.IOException {
+        java.nio.ByteBuffer b = java.nio.ByteBuffer.allocate(24 * image.width * image.height);
+        for (int y = 0; y < image.height; y++) {
+            for (int x = 0; x < image.width; x++) {
+                Color c = image.get(x, y);
+                b.putDouble(c.r).putDouble(c.g).putDouble(c.b);
+            }
+        }
+        Files.write(file, b.array());
     }
 
     public static void main(String[] args) throws Exception {
@@ -53,7 +159,23 @@ public final class TrustedRender {
             String err = null;
             try {
                 Scene scene = SceneLoader.load(Path.of(args[i]));
-                PngFiles.write(render(scene, args[i + 2]).toBufferedImage(), out);
+                String refs = System.getProperty("raylab.boundary.references");
+                Speculation spec = refs == null || refs.isEmpty() ? null
+                        : new Speculation(Remote.process(), Path.of(refs));
+                long c0 = ProcessHandle.current().info().totalCpuDuration().map(java.time.Duration::toNanos).orElse(0L);
+                long w0 = System.nanoTime();
+                long s0 = spec == null ? 0 : StudentProcess.cpuNanosOf(Remote.process());
+                Image image = render(scene, args[i + 2], spec);
+                PngFiles.write(image.toBufferedImage(), out);
+                if (Boolean.getBoolean("raylab.boundary.raw")) {
+                    writeRaw(image, Path.of(out + ".raw")); // every channel's bits, for tests
+                }
+                if (spec != null && System.getenv("RAYLAB_GRADE_TIMES") != null) {
+                    System.err.printf("%s: %s; wall %.2f s, grader process CPU %.2f s, student CPU %.2f s%n", args[i + 2],
+                            spec.counts(), (System.nanoTime() - w0) / 1e9,
+                            (ProcessHandle.current().info().totalCpuDuration().map(java.time.Duration::toNanos).orElse(0L) - c0) / 1e9,
+                            (StudentProcess.cpuNanosOf(Remote.process()) - s0) / 1e9);
+                }
             } catch (StudentException | StudentTimeout e) {
                 err = e.getMessage();
             } catch (Throwable t) {

@@ -90,6 +90,9 @@ public final class Grader {
      * renders run in a trusted JVM whose stand-ins call the student process. Off by default until
      * renders are batched (a full submission is too slow with one call per intersection).
      */
+    /** Phase times on standard error (environment variable RAYLAB_GRADE_TIMES; measurements only). */
+    private static final boolean TIMES = System.getenv("RAYLAB_GRADE_TIMES") != null;
+
     static boolean processBoundary() {
         return Boolean.getBoolean("raylab.grade.boundary");
     }
@@ -334,16 +337,25 @@ public final class Grader {
         trusted.addAll(below);
         boolean boundary = processBoundary();
         if (boundary) {
+            long t0 = System.nanoTime();
             runTests(a, false, visibleClasses, expected, trusted, overlay, setup, mdir, sandbox, got, notes);
+            long t1 = System.nanoTime();
             runTests(a, true, hiddenClasses, expected, trusted, overlay, setup, mdir, sandbox, got, notes);
+            if (TIMES) {
+                System.err.printf("%s visible %.1f s hidden %.1f s%n", a.id(), (t1 - t0) / 1e9, (System.nanoTime() - t1) / 1e9);
+            }
         } else {
             runTestsInBox(a, false, visibleClasses, expected, layers, setup, mdir, sandbox, got, notes);
             runTestsInBox(a, true, hiddenClasses, expected, layers, setup, mdir, sandbox, got, notes);
         }
         tests.addAll(scoreTests(a, setup, plan(a), expected, got));
         // Scenes.
+        long s0 = System.nanoTime();
         tests.addAll(boundary ? gradeScenes(a, trusted, overlay, setup, mdir, scenesCopy, sandbox)
                 : gradeScenesInBox(a, layers, setup, mdir, scenesCopy, sandbox));
+        if (TIMES) {
+            System.err.printf("%s scenes %.1f s%n", a.id(), (System.nanoTime() - s0) / 1e9);
+        }
         return new GradeReport.Milestone(a.id(), a.title(), notes.stream().map(this::withheld).toList(),
                 tests.stream().map(this::withheld).toList());
     }
@@ -811,7 +823,12 @@ public final class Grader {
         List<String> cmd = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
                 "-Xmx" + options.sceneHeapMb() + "m", "-XX:+ExitOnOutOfMemoryError", "-Djava.awt.headless=true",
                 "-XX:+DisableAttachMechanism", "-XX:-UsePerfData", "--limit-modules", TestLauncher.CHILD_MODULES,
-                "-Draylab.boundary=" + config, "-cp", String.join(java.io.File.pathSeparator,
+                // Quick to start: C1 only (a render of seconds pays C2's compile time back rarely).
+                "-XX:+UseSerialGC", "-XX:TieredStopAtLevel=1",
+                "-Draylab.boundary=" + config,
+                // The milestone's reference predicts the student's answers, so that calls go in batches.
+                "-Draylab.boundary.references=" + setup.references.get(a.id()).toAbsolutePath(),
+                "-cp", String.join(java.io.File.pathSeparator,
                         cp.stream().map(Path::toString).toList()), "raylab.boundary.TrustedRender"));
         List<Path> pngs = new ArrayList<>();
         for (int i = 0; i < a.scenes().size(); i++) {
@@ -837,7 +854,7 @@ public final class Grader {
         Process p = null;
         try {
             ProcessBuilder pb = new ProcessBuilder(cmd).directory(dir.toFile())
-                    .redirectOutput(ProcessBuilder.Redirect.DISCARD).redirectError(ProcessBuilder.Redirect.DISCARD);
+                    .redirectOutput(ProcessBuilder.Redirect.DISCARD).redirectError(TIMES ? ProcessBuilder.Redirect.INHERIT : ProcessBuilder.Redirect.DISCARD);
             p = pb.start();
             p.getOutputStream().close();
             try {

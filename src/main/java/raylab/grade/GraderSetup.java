@@ -83,7 +83,7 @@ final class GraderSetup {
         this.framework = dir.resolve("framework.jar");
         this.tests = dir.resolve("tests");
         this.publicStubs = dir.resolve("public");
-        this.publicFramework = dir.resolve("public-framework");
+        this.publicFramework = dir.resolve("public-framework.jar");
         this.libraries = libraries;
     }
 
@@ -342,19 +342,20 @@ final class GraderSetup {
                 }
             }
         }
-        Files.createDirectories(t.publicFramework);
-        try (JarFile jar = new JarFile(t.framework.toFile())) {
+        // One jar file, so that a student box links it instead of copying thousands of files.
+        try (JarFile jar = new JarFile(t.framework.toFile());
+                var out = new java.util.jar.JarOutputStream(Files.newOutputStream(t.publicFramework))) {
             for (var en : (Iterable<java.util.jar.JarEntry>) jar.stream()::iterator) {
                 String n = en.getName();
                 if (en.isDirectory() || n.startsWith("META-INF/") && !n.startsWith("META-INF/services/")
                         || left.stream().anyMatch(x -> x.endsWith("/") ? n.startsWith(x) : isClassOf(n, x))) {
                     continue;
                 }
-                Path q = t.publicFramework.resolve(n);
-                Files.createDirectories(q.getParent());
+                out.putNextEntry(new java.util.jar.JarEntry(n));
                 try (var in = jar.getInputStream(en)) {
-                    Files.copy(in, q);
+                    in.transferTo(out);
                 }
+                out.closeEntry();
             }
         }
         List<Path> withStubs = new ArrayList<>(below);

@@ -53,6 +53,18 @@ public final class Wire {
     public static final byte BATCH_RETURN = 10;
     /** Either side: the empty reply to DEFINE and METHOD. */
     public static final byte ACK = 11;
+    /**
+     * Grader: {@code [int calls]([int method][value target][int n][values][int k]([bytes question]
+     * [bytes answer])^k)...} many calls of any methods at once, each with answers to callbacks the
+     * grader expects it to ask: a question is a CALLBACK payload as the student process writes it,
+     * its answer a CB_RETURN payload. A question asked that is not among them is a callback.
+     */
+    public static final byte MULTI = 12;
+    /**
+     * Student: {@code [int calls]([byte 0][value result][records] | [byte 1][String class]
+     * [String message][int n][String frames])[int u][int used answer]^u)... [String output]}.
+     */
+    public static final byte MULTI_RETURN = 13;
 
     // Value tags.
     public static final byte NULL = 0;
@@ -171,6 +183,17 @@ public final class Wire {
             n += b.length;
         }
 
+        /** A length and the bytes of {@code other}. */
+        public void writeBytes(Out other) {
+            writeInt(other.n);
+            write(other);
+        }
+
+        /** This buffer's bytes, as a key for hash maps. */
+        public Key key() {
+            return new Key(Arrays.copyOf(buf, n));
+        }
+
         public void writeVec3(Vec3 v) {
             writeDouble(v.x);
             writeDouble(v.y);
@@ -240,6 +263,40 @@ public final class Wire {
 
         public Vec3 readVec3() throws IOException {
             return new Vec3(readDouble(), readDouble(), readDouble());
+        }
+
+        /** Bytes written by {@link Out#writeBytes}. */
+        public byte[] readBytes() throws IOException {
+            int len = readInt();
+            need(len);
+            byte[] b = Arrays.copyOfRange(buf, pos, pos + len);
+            pos += len;
+            return b;
+        }
+    }
+
+    /** Bytes compared by content: a question or a call as a hash key. */
+    public static final class Key {
+        private final byte[] bytes;
+        private final int hash;
+
+        public Key(byte[] bytes) {
+            this.bytes = bytes;
+            this.hash = Arrays.hashCode(bytes);
+        }
+
+        public byte[] bytes() {
+            return bytes;
+        }
+
+        @Override
+        public boolean equals(Object o) {
+            return o instanceof Key k && k.hash == hash && Arrays.equals(k.bytes, bytes);
+        }
+
+        @Override
+        public int hashCode() {
+            return hash;
         }
     }
 
