@@ -48,6 +48,8 @@ final class BvhNodes {
         double[] entry = new double[256];
         /** Entry distances as float bits (the packed engine's float traversal). */
         int[] bits = new int[256];
+        /** The ray of the packed engine's 4-wide traversal, for its leaf test (instructor-only). */
+        final double[] ray = new double[16];
         int top;
     }
 

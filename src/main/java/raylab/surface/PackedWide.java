@@ -1,0 +1,191 @@
+package raylab.surface;
+
+/**
+ * The packed engine's 4-wide tree (instructor-only, kept out of the starter with
+ * {@code PackedTriangles}): the binary SAH tree of {@link BvhNodes} collapsed so that each node
+ * holds up to four children, its two children's children where those are inner nodes, else the
+ * child itself. Traversed by {@link PackedOctants}, one copy per ray octant.
+ *
+ * <p>Node i is 32 floats of {@link #node} from 32 i: the children's boxes as structure of arrays
+ * (min x of children 0–3, max x of 0–3, min y, max y, min z, max z: 24 floats), the four child
+ * references as float bits (r ≥ 0: node r; r &lt; 0: leaf ~r of {@link BvhNodes#leaf}), then the
+ * visit order for each octant as one byte (octants 0–3 in float 28, 4–7 in float 29: four 2-bit
+ * child numbers, the first visited in the low bits). An empty child slot has the box
+ * [+∞, −∞], which no ray enters. Children 0 and 1 come from the binary node's left child, 2 and 3
+ * from its right one; the visit order is the binary tree's (left first unless the ray goes toward
+ * −∞ along the split axis, at both levels), so the 4-wide traversal keeps the same hit as the
+ * binary ones, ties included.
+ *
+ * <p>Boxes are the builder's float boxes (rounded outward from the doubles), snapped outward to 0
+ * or ±2⁻⁷² when smaller than that in magnitude ({@link PackedTriangles#grid}).
+ */
+final class PackedWide {
+    /** Floats per node. */
+    static final int NODE = 32;
+    /**
+     * Widening of the box test, in units in the last place: a child is entered when
+     * entry − K ≤ exit as float bits. Entry and exit are each within (1 + u)⁴ of their exact values
+     * (u = 2⁻²⁴: the difference, d to float, 1/d, the product), and K ulps add at least a factor
+     * 1 + K·u ≥ (1 + u)⁴/(1 − u)⁴ to a positive float.
+     */
+    static final int K = 16;
+
+    final float[] node;
+    /** The root: node 0, or the binary tree's single leaf (a negative reference). */
+    final int root;
+    /** Whether every box lies within ±{@link PackedTriangles#HUGE} (else the double traversal). */
+    final boolean inRange;
+    private int next;
+    private final int[] inner;
+
+    PackedWide(BvhNodes tree) {
+        inner = tree.inner;
+        int inners = tree.innerCount();
+        float[] nodes = new float[NODE * Math.max(1, inners)];
+        boolean range = true;
+        for (int i = 0; i < 12 * inners; i++) {
+            int k = BvhNodes.INNER * (i / 12) + i % 12;
+            range &= Math.abs(Float.intBitsToFloat(inner[k])) <= PackedTriangles.HUGE;
+        }
+        inRange = range;
+        if (tree.count == 0 || tree.rootRef < 0) {
+            root = tree.count == 0 ? 0 : tree.rootRef;
+            node = new float[0];
+        } else {
+            root = 0;
+            make(tree.rootRef, nodes);
+            node = java.util.Arrays.copyOf(nodes, NODE * next);
+        }
+    }
+
+    /** The 4-wide node of binary inner node i (depth first, so the root is node 0); its index. */
+    private int make(int i, float[] out) {
+        int w = next++;
+        int o = NODE * w;
+        int k = BvhNodes.INNER * i;
+        int axis0 = inner[k + 13] & 3;
+        int[] axes = new int[2];
+        int[] refs = new int[4];
+        for (int c = 0; c < 2; c++) {
+            int ref = c == 0 ? inner[k + 12] : inner[k + 13] >> 2;
+            if (ref >= 0) {
+                int kc = BvhNodes.INNER * ref;
+                axes[c] = inner[kc + 13] & 3;
+                box(out, o, 2 * c, kc);
+                box(out, o, 2 * c + 1, kc + 6);
+                refs[2 * c] = inner[kc + 12];
+                refs[2 * c + 1] = inner[kc + 13] >> 2;
+            } else {
+                box(out, o, 2 * c, k + 6 * c);
+                for (int a = 0; a < 3; a++) {
+                    out[o + 8 * a + 2 * c + 1] = Float.POSITIVE_INFINITY;
+                    out[o + 8 * a + 4 + 2 * c + 1] = Float.NEGATIVE_INFINITY;
+                }
+                refs[2 * c] = ref;
+                refs[2 * c + 1] = 0;
+            }
+        }
+        int lo = 0, hi = 0;
+        for (int oct = 0; oct < 8; oct++) {
+            int f0 = oct >> axis0 & 1, fl = oct >> axes[0] & 1, fr = oct >> axes[1] & 1;
+            int order = 0;
+            for (int j = 0; j < 4; j++) {
+                int p = (j >> 1) ^ f0;
+                int slot = 2 * p + ((j & 1) ^ (p == 0 ? fl : fr));
+                order |= slot << 2 * j;
+            }
+            if (oct < 4) {
+                lo |= order << 8 * oct;
+            } else {
+                hi |= order << 8 * (oct - 4);
+            }
+        }
+        out[o + 28] = Float.intBitsToFloat(lo);
+        out[o + 29] = Float.intBitsToFloat(hi);
+        for (int s = 0; s < 4; s++) {
+            int ref = refs[s];
+            // An empty slot keeps reference 0: its box is never entered.
+            boolean empty = out[o + s] == Float.POSITIVE_INFINITY;
+            int r = ref >= 0 && !empty ? make(ref, out) : ref;
+            out[o + 24 + s] = Float.intBitsToFloat(r);
+        }
+        return w;
+    }
+
+    /** Child slot s of the node at out[o ..) gets the box of six float bits at inner[k ..). */
+    private void box(float[] out, int o, int s, int k) {
+        for (int a = 0; a < 3; a++) {
+            out[o + 8 * a + s] = PackedTriangles.grid(Float.intBitsToFloat(inner[k + a]), false);
+            out[o + 8 * a + 4 + s] = PackedTriangles.grid(Float.intBitsToFloat(inner[k + 3 + a]), true);
+        }
+    }
+
+    /** The float ≥ t (t ≥ 0) as raw bits (+∞ for +∞): the far end of the search. */
+    static int exitBits(double t) {
+        return Float.floatToRawIntBits(BvhBuilder.up(t));
+    }
+
+    /** Slots of the per-thread ray array of the leaf test ({@link #leaf}). */
+    static final int PX = 0, PY = 1, PZ = 2, TMIN = 3, TMAX = 4, BEST = 5, SHX = 6, SHY = 7, SHZ = 8, PKX = 9,
+            PKY = 10, PKZ = 11, TESTS = 12, RAY = 13;
+
+    /**
+     * The triangles of leaf l, each with the double watertight test ({@link PackedTriangles#hitT}
+     * and the plane rule, as {@link Triangle#intersect}), for the ray in {@code ray} (origin,
+     * tMin, tMax, closest hit so far, shear and origin in ray space; axes = kx | ky << 2 | kz << 4).
+     * Keeps the first hit at the smallest t below the closest hit so far: returns its slot in the
+     * low 32 bits and the new far end of the search ({@link #exitBits}) in the high ones, and
+     * stores its t in {@code ray[BEST]}; returns −1 in the low bits when no triangle is closer. Kept
+     * out of the octant loops so that the ray-space values do not take registers there.
+     */
+    static long leaf(int l, int[] leaf, double[] tri, double[] ray, int axes, boolean anyHit) {
+        final int kx = axes & 3, ky = axes >> 2 & 3, kz = axes >> 4;
+        final double px = ray[PX], py = ray[PY], pz = ray[PZ], tMin = ray[TMIN], tMax = ray[TMAX];
+        final double shx = ray[SHX], shy = ray[SHY], shz = ray[SHZ], pkx = ray[PKX], pky = ray[PKY], pkz = ray[PKZ];
+        double best = ray[BEST];
+        int found = -1;
+        int first = leaf[2 * l];
+        int end = first + leaf[2 * l + 1];
+        int s = first;
+        while (s < end) {
+            double t = PackedTriangles.hitT(tri, 9 * s, kx, ky, kz, shx, shy, shz, pkx, pky, pkz);
+            if (t == t) { // a hit (not NaN): the plane rule
+                t = PackedTriangles.planeRule(t, tri, 9 * s, px, py, pz);
+            }
+            // NaN (no hit) fails every comparison.
+            if (t >= tMin && t <= tMax && t < best) {
+                best = t;
+                found = s;
+                if (anyHit) {
+                    s++;
+                    break;
+                }
+            }
+            s++;
+        }
+        ray[TESTS] += s - first;
+        if (found < 0) {
+            return 0xffffffffL;
+        }
+        ray[BEST] = best;
+        return (long) exitBits(best) << 32 | found;
+    }
+
+    /**
+     * A float strictly below the exact value that the double q approximates (q = −o·i, one
+     * rounding in double, far below a float's ulp): one float step below q rounded down.
+     */
+    static float below(double q) {
+        return Math.nextDown(BvhBuilder.down(q));
+    }
+
+    /** A float strictly above the exact value that the double q approximates (as {@link #below}). */
+    static float above(double q) {
+        return Math.nextUp(BvhBuilder.up(q));
+    }
+
+    /** Bytes held. */
+    long bytes() {
+        return 4L * node.length;
+    }
+}
