@@ -7,11 +7,20 @@ package raylab.surface;
  * The packed engine's 4-wide float traversal, one copy per ray octant (instructor-only, kept out
  * of the starter with {@code PackedTriangles}). Octant o has bit 1 set when d.x &lt; 0, bit 2 when
  * d.y &lt; 0, bit 4 when d.z &lt; 0; in its copy the near and far planes of every axis sit at
- * constant offsets and each slab distance is one difference and one product with constant sign:
- * s·(b − o)·|1/d|. Node layout and the proof that no hit is lost: {@link PackedWide} and
- * docs/mesh-engine.md. The leaves run {@link PackedWide#leaf}: the double watertight test.
+ * constant offsets. A slab distance is one FMA, b·i + c, with i = 1/d rounded to float and c a
+ * float below −o·i for near planes, above it for far ones; the distances are compared as
+ * their float bits, as ints. Node layout and the proof that no hit is lost: {@link PackedWide}
+ * and docs/mesh-engine.md.
+ *
+ * <p>Each octant has two methods: {@code traceN} tests the leaves ({@link PackedWide#leaf}, the
+ * double watertight test) and pops pending children after them; {@code downN} tests boxes and
+ * descends until it reaches a leaf, and calls nothing, so that its loop keeps the ray in
+ * registers. Pending children are longs: entry distance bits &lt;&lt; 32 | reference.
  */
 final class PackedOctants {
+    /** What a descent returns when the stack is empty: no leaf is left. */
+    static final long DONE = Long.MIN_VALUE;
+
     private PackedOctants() {
     }
 
@@ -19,663 +28,862 @@ final class PackedOctants {
      * Closest (or any) hit below the closest hit so far ({@code ray[PackedWide.BEST]}): returns the
      * leaf slot of the hit triangle, or −1 for none; {@code ray} holds the ray for the leaves
      * ({@link PackedWide#leaf}) and gets the new closest hit. The ray is given in float for the
-     * tree: on*, of*: origin coordinates rounded toward the box for near planes and away from it
-     * for far planes; a*: |1/d|.
+     * tree: c*: below −o·i for near planes (cn*), above for far ones (cf*); i*: 1/d.
      */
-    static int trace(int octant, PackedWide wide, int[] leaf, double[] tri, int[] refs, int[] entries, int base,
+    static int trace(int octant, PackedWide wide, int[] leaf, double[] tri, long[] stack,
             double[] ray, int axes, float cnx, float cny, float cnz, float cfx, float cfy, float cfz, float ix,
             float iy, float iz, boolean anyHit) {
         switch (octant) {
             case 0:
-                return trace0(wide.node, wide.root, leaf, tri, refs, entries, base, ray, axes, cnx, cny,
-                        cnz, cfx, cfy, cfz, ix, iy, iz, anyHit);
+                return trace0(wide.node, wide.root, leaf, tri, stack, ray, axes, cnx, cny, cnz,
+                        cfx, cfy, cfz, ix, iy, iz, anyHit);
             case 1:
-                return trace1(wide.node, wide.root, leaf, tri, refs, entries, base, ray, axes, cnx, cny,
-                        cnz, cfx, cfy, cfz, ix, iy, iz, anyHit);
+                return trace1(wide.node, wide.root, leaf, tri, stack, ray, axes, cnx, cny, cnz,
+                        cfx, cfy, cfz, ix, iy, iz, anyHit);
             case 2:
-                return trace2(wide.node, wide.root, leaf, tri, refs, entries, base, ray, axes, cnx, cny,
-                        cnz, cfx, cfy, cfz, ix, iy, iz, anyHit);
+                return trace2(wide.node, wide.root, leaf, tri, stack, ray, axes, cnx, cny, cnz,
+                        cfx, cfy, cfz, ix, iy, iz, anyHit);
             case 3:
-                return trace3(wide.node, wide.root, leaf, tri, refs, entries, base, ray, axes, cnx, cny,
-                        cnz, cfx, cfy, cfz, ix, iy, iz, anyHit);
+                return trace3(wide.node, wide.root, leaf, tri, stack, ray, axes, cnx, cny, cnz,
+                        cfx, cfy, cfz, ix, iy, iz, anyHit);
             case 4:
-                return trace4(wide.node, wide.root, leaf, tri, refs, entries, base, ray, axes, cnx, cny,
-                        cnz, cfx, cfy, cfz, ix, iy, iz, anyHit);
+                return trace4(wide.node, wide.root, leaf, tri, stack, ray, axes, cnx, cny, cnz,
+                        cfx, cfy, cfz, ix, iy, iz, anyHit);
             case 5:
-                return trace5(wide.node, wide.root, leaf, tri, refs, entries, base, ray, axes, cnx, cny,
-                        cnz, cfx, cfy, cfz, ix, iy, iz, anyHit);
+                return trace5(wide.node, wide.root, leaf, tri, stack, ray, axes, cnx, cny, cnz,
+                        cfx, cfy, cfz, ix, iy, iz, anyHit);
             case 6:
-                return trace6(wide.node, wide.root, leaf, tri, refs, entries, base, ray, axes, cnx, cny,
-                        cnz, cfx, cfy, cfz, ix, iy, iz, anyHit);
+                return trace6(wide.node, wide.root, leaf, tri, stack, ray, axes, cnx, cny, cnz,
+                        cfx, cfy, cfz, ix, iy, iz, anyHit);
             case 7:
-                return trace7(wide.node, wide.root, leaf, tri, refs, entries, base, ray, axes, cnx, cny,
-                        cnz, cfx, cfy, cfz, ix, iy, iz, anyHit);
+                return trace7(wide.node, wide.root, leaf, tri, stack, ray, axes, cnx, cny, cnz,
+                        cfx, cfy, cfz, ix, iy, iz, anyHit);
             default:
                 throw new IllegalArgumentException("octant " + octant);
         }
     }
 
     /** Octant 0: d.x > 0, d.y > 0, d.z > 0. */
-    private static int trace0(float[] node, int root, int[] leaf, double[] tri, int[] refs, int[] entries,
-            int base, double[] ray, int axes, float cnx, float cny, float cnz, float cfx, float cfy, float cfz,
-            float ix, float iy, float iz, boolean anyHit) {
+    private static int trace0(float[] node, int root, int[] leaf, double[] tri, long[] stack,
+            double[] ray, int axes, float cnx, float cny, float cnz, float cfx, float cfy, float cfz, float ix,
+            float iy, float iz, boolean anyHit) {
         int t1 = PackedWide.exitBits(Math.min(ray[PackedWide.BEST], ray[PackedWide.TMAX]));
-        int top = base;
+        int top = 0;
         int ref = root;
         int bestSlot = -1;
-        traversal:
         while (true) {
-            if (ref < 0) {
-                long r = PackedWide.leaf(~ref, leaf, tri, ray, axes, anyHit);
-                if ((int) r >= 0) {
-                    bestSlot = (int) r;
-                    t1 = (int) (r >>> 32);
-                    if (anyHit) {
-                        break;
-                    }
+            long r = down0(node, stack, top, ref, t1, cnx, cny, cnz, cfx, cfy, cfz, ix, iy, iz);
+            if (r == DONE) {
+                return bestSlot;
+            }
+            top = (int) (r >>> 32);
+            long h = PackedWide.leaf(~(int) r, leaf, tri, ray, axes, anyHit);
+            if ((int) h >= 0) {
+                bestSlot = (int) h;
+                t1 = (int) (h >>> 32);
+                if (anyHit) {
+                    return bestSlot;
                 }
-            } else {
-                int k = ref << 5;
-                int order = Float.floatToRawIntBits(node[k + 28]);
-                {
-                    int b = k + (order >>> 6 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
-                            Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
-                    refs[top] = Float.floatToRawIntBits(node[b + 24]);
-                    entries[top] = in;
-                    top += in <= out ? 1 : 0;
-                }
-                {
-                    int b = k + (order >>> 4 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
-                            Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
-                    refs[top] = Float.floatToRawIntBits(node[b + 24]);
-                    entries[top] = in;
-                    top += in <= out ? 1 : 0;
-                }
-                {
-                    int b = k + (order >>> 2 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
-                            Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
-                    refs[top] = Float.floatToRawIntBits(node[b + 24]);
-                    entries[top] = in;
-                    top += in <= out ? 1 : 0;
-                }
-                {
-                    int b = k + (order & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
-                            Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
-                    refs[top] = Float.floatToRawIntBits(node[b + 24]);
-                    entries[top] = in;
-                    top += in <= out ? 1 : 0;
-                }
-                }
+            }
             // Pop the nearest pending child that can still hold a closer hit.
+            ref = 0;
             while (true) {
-                if (top == base) {
-                    break traversal;
+                if (top == 0) {
+                    return bestSlot;
                 }
-                top--;
-                if (entries[top] <= t1 + PackedWide.K) {
-                    ref = refs[top];
+                long e = stack[--top];
+                if ((int) (e >> 32) <= t1 + PackedWide.K) {
+                    ref = (int) e;
                     break;
                 }
             }
         }
-        return bestSlot;
+    }
+
+    /**
+     * Octant 0's descent from ref: box tests and pops until a leaf; returns top << 32 | the leaf's
+     * reference, or {@link #DONE}.
+     */
+    private static long down0(float[] node, long[] stack, int top, int ref, int t1, float cnx,
+            float cny, float cnz, float cfx, float cfy, float cfz, float ix, float iy, float iz) {
+        while (true) {
+            if (ref < 0) {
+                return (long) top << 32 | (ref & 0xffffffffL);
+            }
+            int k = ref << 5;
+            int order = Float.floatToRawIntBits(node[k + 28]);
+            {
+                int b = k + (order >>> 6 & 3);
+                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
+                        Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
+                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
+                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
+                if (in <= out) {
+                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                }
+            }
+            {
+                int b = k + (order >>> 4 & 3);
+                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
+                        Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
+                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
+                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
+                if (in <= out) {
+                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                }
+            }
+            {
+                int b = k + (order >>> 2 & 3);
+                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
+                        Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
+                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
+                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
+                if (in <= out) {
+                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                }
+            }
+            {
+                int b = k + (order & 3);
+                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
+                        Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
+                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
+                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
+                if (in <= out) {
+                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                }
+            }
+            // Pop the nearest pending child that can still hold a closer hit.
+            while (true) {
+                if (top == 0) {
+                    return DONE;
+                }
+                long e = stack[--top];
+                if ((int) (e >> 32) <= t1 + PackedWide.K) {
+                    ref = (int) e;
+                    break;
+                }
+            }
+        }
     }
 
     /** Octant 1: d.x < 0, d.y > 0, d.z > 0. */
-    private static int trace1(float[] node, int root, int[] leaf, double[] tri, int[] refs, int[] entries,
-            int base, double[] ray, int axes, float cnx, float cny, float cnz, float cfx, float cfy, float cfz,
-            float ix, float iy, float iz, boolean anyHit) {
+    private static int trace1(float[] node, int root, int[] leaf, double[] tri, long[] stack,
+            double[] ray, int axes, float cnx, float cny, float cnz, float cfx, float cfy, float cfz, float ix,
+            float iy, float iz, boolean anyHit) {
         int t1 = PackedWide.exitBits(Math.min(ray[PackedWide.BEST], ray[PackedWide.TMAX]));
-        int top = base;
+        int top = 0;
         int ref = root;
         int bestSlot = -1;
-        traversal:
         while (true) {
-            if (ref < 0) {
-                long r = PackedWide.leaf(~ref, leaf, tri, ray, axes, anyHit);
-                if ((int) r >= 0) {
-                    bestSlot = (int) r;
-                    t1 = (int) (r >>> 32);
-                    if (anyHit) {
-                        break;
-                    }
+            long r = down1(node, stack, top, ref, t1, cnx, cny, cnz, cfx, cfy, cfz, ix, iy, iz);
+            if (r == DONE) {
+                return bestSlot;
+            }
+            top = (int) (r >>> 32);
+            long h = PackedWide.leaf(~(int) r, leaf, tri, ray, axes, anyHit);
+            if ((int) h >= 0) {
+                bestSlot = (int) h;
+                t1 = (int) (h >>> 32);
+                if (anyHit) {
+                    return bestSlot;
                 }
-            } else {
-                int k = ref << 5;
-                int order = Float.floatToRawIntBits(node[k + 28]) >>> 8;
-                {
-                    int b = k + (order >>> 6 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
-                            Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
-                    refs[top] = Float.floatToRawIntBits(node[b + 24]);
-                    entries[top] = in;
-                    top += in <= out ? 1 : 0;
-                }
-                {
-                    int b = k + (order >>> 4 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
-                            Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
-                    refs[top] = Float.floatToRawIntBits(node[b + 24]);
-                    entries[top] = in;
-                    top += in <= out ? 1 : 0;
-                }
-                {
-                    int b = k + (order >>> 2 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
-                            Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
-                    refs[top] = Float.floatToRawIntBits(node[b + 24]);
-                    entries[top] = in;
-                    top += in <= out ? 1 : 0;
-                }
-                {
-                    int b = k + (order & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
-                            Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
-                    refs[top] = Float.floatToRawIntBits(node[b + 24]);
-                    entries[top] = in;
-                    top += in <= out ? 1 : 0;
-                }
-                }
+            }
             // Pop the nearest pending child that can still hold a closer hit.
+            ref = 0;
             while (true) {
-                if (top == base) {
-                    break traversal;
+                if (top == 0) {
+                    return bestSlot;
                 }
-                top--;
-                if (entries[top] <= t1 + PackedWide.K) {
-                    ref = refs[top];
+                long e = stack[--top];
+                if ((int) (e >> 32) <= t1 + PackedWide.K) {
+                    ref = (int) e;
                     break;
                 }
             }
         }
-        return bestSlot;
+    }
+
+    /**
+     * Octant 1's descent from ref: box tests and pops until a leaf; returns top << 32 | the leaf's
+     * reference, or {@link #DONE}.
+     */
+    private static long down1(float[] node, long[] stack, int top, int ref, int t1, float cnx,
+            float cny, float cnz, float cfx, float cfy, float cfz, float ix, float iy, float iz) {
+        while (true) {
+            if (ref < 0) {
+                return (long) top << 32 | (ref & 0xffffffffL);
+            }
+            int k = ref << 5;
+            int order = Float.floatToRawIntBits(node[k + 28]) >>> 8;
+            {
+                int b = k + (order >>> 6 & 3);
+                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
+                        Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
+                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
+                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
+                if (in <= out) {
+                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                }
+            }
+            {
+                int b = k + (order >>> 4 & 3);
+                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
+                        Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
+                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
+                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
+                if (in <= out) {
+                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                }
+            }
+            {
+                int b = k + (order >>> 2 & 3);
+                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
+                        Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
+                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
+                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
+                if (in <= out) {
+                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                }
+            }
+            {
+                int b = k + (order & 3);
+                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
+                        Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
+                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
+                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
+                if (in <= out) {
+                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                }
+            }
+            // Pop the nearest pending child that can still hold a closer hit.
+            while (true) {
+                if (top == 0) {
+                    return DONE;
+                }
+                long e = stack[--top];
+                if ((int) (e >> 32) <= t1 + PackedWide.K) {
+                    ref = (int) e;
+                    break;
+                }
+            }
+        }
     }
 
     /** Octant 2: d.x > 0, d.y < 0, d.z > 0. */
-    private static int trace2(float[] node, int root, int[] leaf, double[] tri, int[] refs, int[] entries,
-            int base, double[] ray, int axes, float cnx, float cny, float cnz, float cfx, float cfy, float cfz,
-            float ix, float iy, float iz, boolean anyHit) {
+    private static int trace2(float[] node, int root, int[] leaf, double[] tri, long[] stack,
+            double[] ray, int axes, float cnx, float cny, float cnz, float cfx, float cfy, float cfz, float ix,
+            float iy, float iz, boolean anyHit) {
         int t1 = PackedWide.exitBits(Math.min(ray[PackedWide.BEST], ray[PackedWide.TMAX]));
-        int top = base;
+        int top = 0;
         int ref = root;
         int bestSlot = -1;
-        traversal:
         while (true) {
-            if (ref < 0) {
-                long r = PackedWide.leaf(~ref, leaf, tri, ray, axes, anyHit);
-                if ((int) r >= 0) {
-                    bestSlot = (int) r;
-                    t1 = (int) (r >>> 32);
-                    if (anyHit) {
-                        break;
-                    }
+            long r = down2(node, stack, top, ref, t1, cnx, cny, cnz, cfx, cfy, cfz, ix, iy, iz);
+            if (r == DONE) {
+                return bestSlot;
+            }
+            top = (int) (r >>> 32);
+            long h = PackedWide.leaf(~(int) r, leaf, tri, ray, axes, anyHit);
+            if ((int) h >= 0) {
+                bestSlot = (int) h;
+                t1 = (int) (h >>> 32);
+                if (anyHit) {
+                    return bestSlot;
                 }
-            } else {
-                int k = ref << 5;
-                int order = Float.floatToRawIntBits(node[k + 28]) >>> 16;
-                {
-                    int b = k + (order >>> 6 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
-                            Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
-                    refs[top] = Float.floatToRawIntBits(node[b + 24]);
-                    entries[top] = in;
-                    top += in <= out ? 1 : 0;
-                }
-                {
-                    int b = k + (order >>> 4 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
-                            Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
-                    refs[top] = Float.floatToRawIntBits(node[b + 24]);
-                    entries[top] = in;
-                    top += in <= out ? 1 : 0;
-                }
-                {
-                    int b = k + (order >>> 2 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
-                            Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
-                    refs[top] = Float.floatToRawIntBits(node[b + 24]);
-                    entries[top] = in;
-                    top += in <= out ? 1 : 0;
-                }
-                {
-                    int b = k + (order & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
-                            Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
-                    refs[top] = Float.floatToRawIntBits(node[b + 24]);
-                    entries[top] = in;
-                    top += in <= out ? 1 : 0;
-                }
-                }
+            }
             // Pop the nearest pending child that can still hold a closer hit.
+            ref = 0;
             while (true) {
-                if (top == base) {
-                    break traversal;
+                if (top == 0) {
+                    return bestSlot;
                 }
-                top--;
-                if (entries[top] <= t1 + PackedWide.K) {
-                    ref = refs[top];
+                long e = stack[--top];
+                if ((int) (e >> 32) <= t1 + PackedWide.K) {
+                    ref = (int) e;
                     break;
                 }
             }
         }
-        return bestSlot;
+    }
+
+    /**
+     * Octant 2's descent from ref: box tests and pops until a leaf; returns top << 32 | the leaf's
+     * reference, or {@link #DONE}.
+     */
+    private static long down2(float[] node, long[] stack, int top, int ref, int t1, float cnx,
+            float cny, float cnz, float cfx, float cfy, float cfz, float ix, float iy, float iz) {
+        while (true) {
+            if (ref < 0) {
+                return (long) top << 32 | (ref & 0xffffffffL);
+            }
+            int k = ref << 5;
+            int order = Float.floatToRawIntBits(node[k + 28]) >>> 16;
+            {
+                int b = k + (order >>> 6 & 3);
+                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
+                        Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
+                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
+                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
+                if (in <= out) {
+                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                }
+            }
+            {
+                int b = k + (order >>> 4 & 3);
+                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
+                        Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
+                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
+                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
+                if (in <= out) {
+                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                }
+            }
+            {
+                int b = k + (order >>> 2 & 3);
+                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
+                        Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
+                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
+                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
+                if (in <= out) {
+                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                }
+            }
+            {
+                int b = k + (order & 3);
+                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
+                        Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
+                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
+                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
+                if (in <= out) {
+                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                }
+            }
+            // Pop the nearest pending child that can still hold a closer hit.
+            while (true) {
+                if (top == 0) {
+                    return DONE;
+                }
+                long e = stack[--top];
+                if ((int) (e >> 32) <= t1 + PackedWide.K) {
+                    ref = (int) e;
+                    break;
+                }
+            }
+        }
     }
 
     /** Octant 3: d.x < 0, d.y < 0, d.z > 0. */
-    private static int trace3(float[] node, int root, int[] leaf, double[] tri, int[] refs, int[] entries,
-            int base, double[] ray, int axes, float cnx, float cny, float cnz, float cfx, float cfy, float cfz,
-            float ix, float iy, float iz, boolean anyHit) {
+    private static int trace3(float[] node, int root, int[] leaf, double[] tri, long[] stack,
+            double[] ray, int axes, float cnx, float cny, float cnz, float cfx, float cfy, float cfz, float ix,
+            float iy, float iz, boolean anyHit) {
         int t1 = PackedWide.exitBits(Math.min(ray[PackedWide.BEST], ray[PackedWide.TMAX]));
-        int top = base;
+        int top = 0;
         int ref = root;
         int bestSlot = -1;
-        traversal:
         while (true) {
-            if (ref < 0) {
-                long r = PackedWide.leaf(~ref, leaf, tri, ray, axes, anyHit);
-                if ((int) r >= 0) {
-                    bestSlot = (int) r;
-                    t1 = (int) (r >>> 32);
-                    if (anyHit) {
-                        break;
-                    }
+            long r = down3(node, stack, top, ref, t1, cnx, cny, cnz, cfx, cfy, cfz, ix, iy, iz);
+            if (r == DONE) {
+                return bestSlot;
+            }
+            top = (int) (r >>> 32);
+            long h = PackedWide.leaf(~(int) r, leaf, tri, ray, axes, anyHit);
+            if ((int) h >= 0) {
+                bestSlot = (int) h;
+                t1 = (int) (h >>> 32);
+                if (anyHit) {
+                    return bestSlot;
                 }
-            } else {
-                int k = ref << 5;
-                int order = Float.floatToRawIntBits(node[k + 28]) >>> 24;
-                {
-                    int b = k + (order >>> 6 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
-                            Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
-                    refs[top] = Float.floatToRawIntBits(node[b + 24]);
-                    entries[top] = in;
-                    top += in <= out ? 1 : 0;
-                }
-                {
-                    int b = k + (order >>> 4 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
-                            Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
-                    refs[top] = Float.floatToRawIntBits(node[b + 24]);
-                    entries[top] = in;
-                    top += in <= out ? 1 : 0;
-                }
-                {
-                    int b = k + (order >>> 2 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
-                            Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
-                    refs[top] = Float.floatToRawIntBits(node[b + 24]);
-                    entries[top] = in;
-                    top += in <= out ? 1 : 0;
-                }
-                {
-                    int b = k + (order & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
-                            Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
-                    refs[top] = Float.floatToRawIntBits(node[b + 24]);
-                    entries[top] = in;
-                    top += in <= out ? 1 : 0;
-                }
-                }
+            }
             // Pop the nearest pending child that can still hold a closer hit.
+            ref = 0;
             while (true) {
-                if (top == base) {
-                    break traversal;
+                if (top == 0) {
+                    return bestSlot;
                 }
-                top--;
-                if (entries[top] <= t1 + PackedWide.K) {
-                    ref = refs[top];
+                long e = stack[--top];
+                if ((int) (e >> 32) <= t1 + PackedWide.K) {
+                    ref = (int) e;
                     break;
                 }
             }
         }
-        return bestSlot;
+    }
+
+    /**
+     * Octant 3's descent from ref: box tests and pops until a leaf; returns top << 32 | the leaf's
+     * reference, or {@link #DONE}.
+     */
+    private static long down3(float[] node, long[] stack, int top, int ref, int t1, float cnx,
+            float cny, float cnz, float cfx, float cfy, float cfz, float ix, float iy, float iz) {
+        while (true) {
+            if (ref < 0) {
+                return (long) top << 32 | (ref & 0xffffffffL);
+            }
+            int k = ref << 5;
+            int order = Float.floatToRawIntBits(node[k + 28]) >>> 24;
+            {
+                int b = k + (order >>> 6 & 3);
+                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
+                        Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
+                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
+                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
+                if (in <= out) {
+                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                }
+            }
+            {
+                int b = k + (order >>> 4 & 3);
+                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
+                        Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
+                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
+                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
+                if (in <= out) {
+                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                }
+            }
+            {
+                int b = k + (order >>> 2 & 3);
+                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
+                        Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
+                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
+                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
+                if (in <= out) {
+                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                }
+            }
+            {
+                int b = k + (order & 3);
+                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
+                        Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
+                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
+                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
+                if (in <= out) {
+                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                }
+            }
+            // Pop the nearest pending child that can still hold a closer hit.
+            while (true) {
+                if (top == 0) {
+                    return DONE;
+                }
+                long e = stack[--top];
+                if ((int) (e >> 32) <= t1 + PackedWide.K) {
+                    ref = (int) e;
+                    break;
+                }
+            }
+        }
     }
 
     /** Octant 4: d.x > 0, d.y > 0, d.z < 0. */
-    private static int trace4(float[] node, int root, int[] leaf, double[] tri, int[] refs, int[] entries,
-            int base, double[] ray, int axes, float cnx, float cny, float cnz, float cfx, float cfy, float cfz,
-            float ix, float iy, float iz, boolean anyHit) {
+    private static int trace4(float[] node, int root, int[] leaf, double[] tri, long[] stack,
+            double[] ray, int axes, float cnx, float cny, float cnz, float cfx, float cfy, float cfz, float ix,
+            float iy, float iz, boolean anyHit) {
         int t1 = PackedWide.exitBits(Math.min(ray[PackedWide.BEST], ray[PackedWide.TMAX]));
-        int top = base;
+        int top = 0;
         int ref = root;
         int bestSlot = -1;
-        traversal:
         while (true) {
-            if (ref < 0) {
-                long r = PackedWide.leaf(~ref, leaf, tri, ray, axes, anyHit);
-                if ((int) r >= 0) {
-                    bestSlot = (int) r;
-                    t1 = (int) (r >>> 32);
-                    if (anyHit) {
-                        break;
-                    }
+            long r = down4(node, stack, top, ref, t1, cnx, cny, cnz, cfx, cfy, cfz, ix, iy, iz);
+            if (r == DONE) {
+                return bestSlot;
+            }
+            top = (int) (r >>> 32);
+            long h = PackedWide.leaf(~(int) r, leaf, tri, ray, axes, anyHit);
+            if ((int) h >= 0) {
+                bestSlot = (int) h;
+                t1 = (int) (h >>> 32);
+                if (anyHit) {
+                    return bestSlot;
                 }
-            } else {
-                int k = ref << 5;
-                int order = Float.floatToRawIntBits(node[k + 29]);
-                {
-                    int b = k + (order >>> 6 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
-                            Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
-                    refs[top] = Float.floatToRawIntBits(node[b + 24]);
-                    entries[top] = in;
-                    top += in <= out ? 1 : 0;
-                }
-                {
-                    int b = k + (order >>> 4 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
-                            Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
-                    refs[top] = Float.floatToRawIntBits(node[b + 24]);
-                    entries[top] = in;
-                    top += in <= out ? 1 : 0;
-                }
-                {
-                    int b = k + (order >>> 2 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
-                            Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
-                    refs[top] = Float.floatToRawIntBits(node[b + 24]);
-                    entries[top] = in;
-                    top += in <= out ? 1 : 0;
-                }
-                {
-                    int b = k + (order & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
-                            Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
-                    refs[top] = Float.floatToRawIntBits(node[b + 24]);
-                    entries[top] = in;
-                    top += in <= out ? 1 : 0;
-                }
-                }
+            }
             // Pop the nearest pending child that can still hold a closer hit.
+            ref = 0;
             while (true) {
-                if (top == base) {
-                    break traversal;
+                if (top == 0) {
+                    return bestSlot;
                 }
-                top--;
-                if (entries[top] <= t1 + PackedWide.K) {
-                    ref = refs[top];
+                long e = stack[--top];
+                if ((int) (e >> 32) <= t1 + PackedWide.K) {
+                    ref = (int) e;
                     break;
                 }
             }
         }
-        return bestSlot;
+    }
+
+    /**
+     * Octant 4's descent from ref: box tests and pops until a leaf; returns top << 32 | the leaf's
+     * reference, or {@link #DONE}.
+     */
+    private static long down4(float[] node, long[] stack, int top, int ref, int t1, float cnx,
+            float cny, float cnz, float cfx, float cfy, float cfz, float ix, float iy, float iz) {
+        while (true) {
+            if (ref < 0) {
+                return (long) top << 32 | (ref & 0xffffffffL);
+            }
+            int k = ref << 5;
+            int order = Float.floatToRawIntBits(node[k + 29]);
+            {
+                int b = k + (order >>> 6 & 3);
+                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
+                        Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
+                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
+                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
+                if (in <= out) {
+                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                }
+            }
+            {
+                int b = k + (order >>> 4 & 3);
+                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
+                        Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
+                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
+                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
+                if (in <= out) {
+                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                }
+            }
+            {
+                int b = k + (order >>> 2 & 3);
+                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
+                        Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
+                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
+                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
+                if (in <= out) {
+                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                }
+            }
+            {
+                int b = k + (order & 3);
+                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
+                        Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
+                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
+                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
+                if (in <= out) {
+                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                }
+            }
+            // Pop the nearest pending child that can still hold a closer hit.
+            while (true) {
+                if (top == 0) {
+                    return DONE;
+                }
+                long e = stack[--top];
+                if ((int) (e >> 32) <= t1 + PackedWide.K) {
+                    ref = (int) e;
+                    break;
+                }
+            }
+        }
     }
 
     /** Octant 5: d.x < 0, d.y > 0, d.z < 0. */
-    private static int trace5(float[] node, int root, int[] leaf, double[] tri, int[] refs, int[] entries,
-            int base, double[] ray, int axes, float cnx, float cny, float cnz, float cfx, float cfy, float cfz,
-            float ix, float iy, float iz, boolean anyHit) {
+    private static int trace5(float[] node, int root, int[] leaf, double[] tri, long[] stack,
+            double[] ray, int axes, float cnx, float cny, float cnz, float cfx, float cfy, float cfz, float ix,
+            float iy, float iz, boolean anyHit) {
         int t1 = PackedWide.exitBits(Math.min(ray[PackedWide.BEST], ray[PackedWide.TMAX]));
-        int top = base;
+        int top = 0;
         int ref = root;
         int bestSlot = -1;
-        traversal:
         while (true) {
-            if (ref < 0) {
-                long r = PackedWide.leaf(~ref, leaf, tri, ray, axes, anyHit);
-                if ((int) r >= 0) {
-                    bestSlot = (int) r;
-                    t1 = (int) (r >>> 32);
-                    if (anyHit) {
-                        break;
-                    }
+            long r = down5(node, stack, top, ref, t1, cnx, cny, cnz, cfx, cfy, cfz, ix, iy, iz);
+            if (r == DONE) {
+                return bestSlot;
+            }
+            top = (int) (r >>> 32);
+            long h = PackedWide.leaf(~(int) r, leaf, tri, ray, axes, anyHit);
+            if ((int) h >= 0) {
+                bestSlot = (int) h;
+                t1 = (int) (h >>> 32);
+                if (anyHit) {
+                    return bestSlot;
                 }
-            } else {
-                int k = ref << 5;
-                int order = Float.floatToRawIntBits(node[k + 29]) >>> 8;
-                {
-                    int b = k + (order >>> 6 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
-                            Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
-                    refs[top] = Float.floatToRawIntBits(node[b + 24]);
-                    entries[top] = in;
-                    top += in <= out ? 1 : 0;
-                }
-                {
-                    int b = k + (order >>> 4 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
-                            Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
-                    refs[top] = Float.floatToRawIntBits(node[b + 24]);
-                    entries[top] = in;
-                    top += in <= out ? 1 : 0;
-                }
-                {
-                    int b = k + (order >>> 2 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
-                            Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
-                    refs[top] = Float.floatToRawIntBits(node[b + 24]);
-                    entries[top] = in;
-                    top += in <= out ? 1 : 0;
-                }
-                {
-                    int b = k + (order & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
-                            Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
-                    refs[top] = Float.floatToRawIntBits(node[b + 24]);
-                    entries[top] = in;
-                    top += in <= out ? 1 : 0;
-                }
-                }
+            }
             // Pop the nearest pending child that can still hold a closer hit.
+            ref = 0;
             while (true) {
-                if (top == base) {
-                    break traversal;
+                if (top == 0) {
+                    return bestSlot;
                 }
-                top--;
-                if (entries[top] <= t1 + PackedWide.K) {
-                    ref = refs[top];
+                long e = stack[--top];
+                if ((int) (e >> 32) <= t1 + PackedWide.K) {
+                    ref = (int) e;
                     break;
                 }
             }
         }
-        return bestSlot;
+    }
+
+    /**
+     * Octant 5's descent from ref: box tests and pops until a leaf; returns top << 32 | the leaf's
+     * reference, or {@link #DONE}.
+     */
+    private static long down5(float[] node, long[] stack, int top, int ref, int t1, float cnx,
+            float cny, float cnz, float cfx, float cfy, float cfz, float ix, float iy, float iz) {
+        while (true) {
+            if (ref < 0) {
+                return (long) top << 32 | (ref & 0xffffffffL);
+            }
+            int k = ref << 5;
+            int order = Float.floatToRawIntBits(node[k + 29]) >>> 8;
+            {
+                int b = k + (order >>> 6 & 3);
+                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
+                        Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
+                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
+                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
+                if (in <= out) {
+                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                }
+            }
+            {
+                int b = k + (order >>> 4 & 3);
+                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
+                        Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
+                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
+                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
+                if (in <= out) {
+                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                }
+            }
+            {
+                int b = k + (order >>> 2 & 3);
+                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
+                        Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
+                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
+                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
+                if (in <= out) {
+                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                }
+            }
+            {
+                int b = k + (order & 3);
+                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
+                        Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
+                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
+                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
+                if (in <= out) {
+                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                }
+            }
+            // Pop the nearest pending child that can still hold a closer hit.
+            while (true) {
+                if (top == 0) {
+                    return DONE;
+                }
+                long e = stack[--top];
+                if ((int) (e >> 32) <= t1 + PackedWide.K) {
+                    ref = (int) e;
+                    break;
+                }
+            }
+        }
     }
 
     /** Octant 6: d.x > 0, d.y < 0, d.z < 0. */
-    private static int trace6(float[] node, int root, int[] leaf, double[] tri, int[] refs, int[] entries,
-            int base, double[] ray, int axes, float cnx, float cny, float cnz, float cfx, float cfy, float cfz,
-            float ix, float iy, float iz, boolean anyHit) {
+    private static int trace6(float[] node, int root, int[] leaf, double[] tri, long[] stack,
+            double[] ray, int axes, float cnx, float cny, float cnz, float cfx, float cfy, float cfz, float ix,
+            float iy, float iz, boolean anyHit) {
         int t1 = PackedWide.exitBits(Math.min(ray[PackedWide.BEST], ray[PackedWide.TMAX]));
-        int top = base;
+        int top = 0;
         int ref = root;
         int bestSlot = -1;
-        traversal:
         while (true) {
-            if (ref < 0) {
-                long r = PackedWide.leaf(~ref, leaf, tri, ray, axes, anyHit);
-                if ((int) r >= 0) {
-                    bestSlot = (int) r;
-                    t1 = (int) (r >>> 32);
-                    if (anyHit) {
-                        break;
-                    }
+            long r = down6(node, stack, top, ref, t1, cnx, cny, cnz, cfx, cfy, cfz, ix, iy, iz);
+            if (r == DONE) {
+                return bestSlot;
+            }
+            top = (int) (r >>> 32);
+            long h = PackedWide.leaf(~(int) r, leaf, tri, ray, axes, anyHit);
+            if ((int) h >= 0) {
+                bestSlot = (int) h;
+                t1 = (int) (h >>> 32);
+                if (anyHit) {
+                    return bestSlot;
                 }
-            } else {
-                int k = ref << 5;
-                int order = Float.floatToRawIntBits(node[k + 29]) >>> 16;
-                {
-                    int b = k + (order >>> 6 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
-                            Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
-                    refs[top] = Float.floatToRawIntBits(node[b + 24]);
-                    entries[top] = in;
-                    top += in <= out ? 1 : 0;
-                }
-                {
-                    int b = k + (order >>> 4 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
-                            Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
-                    refs[top] = Float.floatToRawIntBits(node[b + 24]);
-                    entries[top] = in;
-                    top += in <= out ? 1 : 0;
-                }
-                {
-                    int b = k + (order >>> 2 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
-                            Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
-                    refs[top] = Float.floatToRawIntBits(node[b + 24]);
-                    entries[top] = in;
-                    top += in <= out ? 1 : 0;
-                }
-                {
-                    int b = k + (order & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
-                            Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
-                    refs[top] = Float.floatToRawIntBits(node[b + 24]);
-                    entries[top] = in;
-                    top += in <= out ? 1 : 0;
-                }
-                }
+            }
             // Pop the nearest pending child that can still hold a closer hit.
+            ref = 0;
             while (true) {
-                if (top == base) {
-                    break traversal;
+                if (top == 0) {
+                    return bestSlot;
                 }
-                top--;
-                if (entries[top] <= t1 + PackedWide.K) {
-                    ref = refs[top];
+                long e = stack[--top];
+                if ((int) (e >> 32) <= t1 + PackedWide.K) {
+                    ref = (int) e;
                     break;
                 }
             }
         }
-        return bestSlot;
+    }
+
+    /**
+     * Octant 6's descent from ref: box tests and pops until a leaf; returns top << 32 | the leaf's
+     * reference, or {@link #DONE}.
+     */
+    private static long down6(float[] node, long[] stack, int top, int ref, int t1, float cnx,
+            float cny, float cnz, float cfx, float cfy, float cfz, float ix, float iy, float iz) {
+        while (true) {
+            if (ref < 0) {
+                return (long) top << 32 | (ref & 0xffffffffL);
+            }
+            int k = ref << 5;
+            int order = Float.floatToRawIntBits(node[k + 29]) >>> 16;
+            {
+                int b = k + (order >>> 6 & 3);
+                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
+                        Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
+                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
+                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
+                if (in <= out) {
+                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                }
+            }
+            {
+                int b = k + (order >>> 4 & 3);
+                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
+                        Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
+                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
+                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
+                if (in <= out) {
+                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                }
+            }
+            {
+                int b = k + (order >>> 2 & 3);
+                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
+                        Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
+                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
+                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
+                if (in <= out) {
+                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                }
+            }
+            {
+                int b = k + (order & 3);
+                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
+                        Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
+                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
+                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
+                if (in <= out) {
+                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                }
+            }
+            // Pop the nearest pending child that can still hold a closer hit.
+            while (true) {
+                if (top == 0) {
+                    return DONE;
+                }
+                long e = stack[--top];
+                if ((int) (e >> 32) <= t1 + PackedWide.K) {
+                    ref = (int) e;
+                    break;
+                }
+            }
+        }
     }
 
     /** Octant 7: d.x < 0, d.y < 0, d.z < 0. */
-    private static int trace7(float[] node, int root, int[] leaf, double[] tri, int[] refs, int[] entries,
-            int base, double[] ray, int axes, float cnx, float cny, float cnz, float cfx, float cfy, float cfz,
-            float ix, float iy, float iz, boolean anyHit) {
+    private static int trace7(float[] node, int root, int[] leaf, double[] tri, long[] stack,
+            double[] ray, int axes, float cnx, float cny, float cnz, float cfx, float cfy, float cfz, float ix,
+            float iy, float iz, boolean anyHit) {
         int t1 = PackedWide.exitBits(Math.min(ray[PackedWide.BEST], ray[PackedWide.TMAX]));
-        int top = base;
+        int top = 0;
         int ref = root;
         int bestSlot = -1;
-        traversal:
         while (true) {
-            if (ref < 0) {
-                long r = PackedWide.leaf(~ref, leaf, tri, ray, axes, anyHit);
-                if ((int) r >= 0) {
-                    bestSlot = (int) r;
-                    t1 = (int) (r >>> 32);
-                    if (anyHit) {
-                        break;
-                    }
+            long r = down7(node, stack, top, ref, t1, cnx, cny, cnz, cfx, cfy, cfz, ix, iy, iz);
+            if (r == DONE) {
+                return bestSlot;
+            }
+            top = (int) (r >>> 32);
+            long h = PackedWide.leaf(~(int) r, leaf, tri, ray, axes, anyHit);
+            if ((int) h >= 0) {
+                bestSlot = (int) h;
+                t1 = (int) (h >>> 32);
+                if (anyHit) {
+                    return bestSlot;
                 }
-            } else {
-                int k = ref << 5;
-                int order = Float.floatToRawIntBits(node[k + 29]) >>> 24;
-                {
-                    int b = k + (order >>> 6 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
-                            Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
-                    refs[top] = Float.floatToRawIntBits(node[b + 24]);
-                    entries[top] = in;
-                    top += in <= out ? 1 : 0;
-                }
-                {
-                    int b = k + (order >>> 4 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
-                            Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
-                    refs[top] = Float.floatToRawIntBits(node[b + 24]);
-                    entries[top] = in;
-                    top += in <= out ? 1 : 0;
-                }
-                {
-                    int b = k + (order >>> 2 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
-                            Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
-                    refs[top] = Float.floatToRawIntBits(node[b + 24]);
-                    entries[top] = in;
-                    top += in <= out ? 1 : 0;
-                }
-                {
-                    int b = k + (order & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
-                            Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
-                    refs[top] = Float.floatToRawIntBits(node[b + 24]);
-                    entries[top] = in;
-                    top += in <= out ? 1 : 0;
-                }
-                }
+            }
             // Pop the nearest pending child that can still hold a closer hit.
+            ref = 0;
             while (true) {
-                if (top == base) {
-                    break traversal;
+                if (top == 0) {
+                    return bestSlot;
                 }
-                top--;
-                if (entries[top] <= t1 + PackedWide.K) {
-                    ref = refs[top];
+                long e = stack[--top];
+                if ((int) (e >> 32) <= t1 + PackedWide.K) {
+                    ref = (int) e;
                     break;
                 }
             }
         }
-        return bestSlot;
+    }
+
+    /**
+     * Octant 7's descent from ref: box tests and pops until a leaf; returns top << 32 | the leaf's
+     * reference, or {@link #DONE}.
+     */
+    private static long down7(float[] node, long[] stack, int top, int ref, int t1, float cnx,
+            float cny, float cnz, float cfx, float cfy, float cfz, float ix, float iy, float iz) {
+        while (true) {
+            if (ref < 0) {
+                return (long) top << 32 | (ref & 0xffffffffL);
+            }
+            int k = ref << 5;
+            int order = Float.floatToRawIntBits(node[k + 29]) >>> 24;
+            {
+                int b = k + (order >>> 6 & 3);
+                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
+                        Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
+                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
+                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
+                if (in <= out) {
+                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                }
+            }
+            {
+                int b = k + (order >>> 4 & 3);
+                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
+                        Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
+                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
+                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
+                if (in <= out) {
+                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                }
+            }
+            {
+                int b = k + (order >>> 2 & 3);
+                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
+                        Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
+                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
+                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
+                if (in <= out) {
+                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                }
+            }
+            {
+                int b = k + (order & 3);
+                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
+                        Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
+                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
+                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
+                if (in <= out) {
+                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                }
+            }
+            // Pop the nearest pending child that can still hold a closer hit.
+            while (true) {
+                if (top == 0) {
+                    return DONE;
+                }
+                long e = stack[--top];
+                if ((int) (e >> 32) <= t1 + PackedWide.K) {
+                    ref = (int) e;
+                    break;
+                }
+            }
+        }
     }
 }

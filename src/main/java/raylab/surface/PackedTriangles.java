@@ -112,8 +112,9 @@ final class PackedTriangles implements Mesh.Engine {
         final double pky = ky == 0 ? px : ky == 1 ? py : pz;
         final double pkz = kz == 0 ? px : kz == 1 ? py : pz;
         BvhNodes.Frames frames = BvhNodes.frames();
-        // Each node pushes at most four children and pops one; the traversal traces nothing else.
-        BvhNodes.ensure(frames, frames.top + 3 * tree.depth + 8);
+        // Each node pushes at most four children and pops one. The 4-wide traversal traces nothing
+        // else, so its stack of pending children starts at 0 whatever frames the caller has taken.
+        BvhNodes.ensure(frames, 3 * tree.depth + 8);
         final double[] r = frames.ray;
         r[PackedWide.PX] = px;
         r[PackedWide.PY] = py;
@@ -128,7 +129,7 @@ final class PackedTriangles implements Mesh.Engine {
         r[PackedWide.PKY] = pky;
         r[PackedWide.PKZ] = pkz;
         r[PackedWide.TESTS] = 0;
-        int slot = PackedOctants.trace(octant, wide, tree.leaf, tri, frames.refs, frames.bits, frames.top, r,
+        int slot = PackedOctants.trace(octant, wide, tree.leaf, tri, frames.pending, r,
                 kx | ky << 2 | kz << 4, cnx, cny, cnz, cfx, cfy, cfz, ix, iy, iz, anyHit);
         return finish(rec, anyHit, r[PackedWide.BEST], slot, (int) r[PackedWide.TESTS], kx, ky, kz, shx, shy, shz, pkx,
                 pky, pkz);

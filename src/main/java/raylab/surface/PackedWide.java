@@ -58,58 +58,122 @@ final class PackedWide {
         }
     }
 
-    /** The 4-wide node of binary inner node i (depth first, so the root is node 0); its index. */
+    /**
+     * The 4-wide node of binary inner node i (depth first, so the root is node 0); its index. Its
+     * children: i's two children, then, while fewer than four, the inner one of largest surface
+     * area replaced by its own two children. The visit order for an octant is the binary tree's
+     * among them (left first unless the ray goes toward −∞ along the split axis).
+     */
     private int make(int i, float[] out) {
         int w = next++;
         int o = NODE * w;
-        int k = BvhNodes.INNER * i;
-        int axis0 = inner[k + 13] & 3;
-        int[] axes = new int[2];
+        // Frontier: binary references and the offsets of their boxes in inner.
         int[] refs = new int[4];
-        for (int c = 0; c < 2; c++) {
-            int ref = c == 0 ? inner[k + 12] : inner[k + 13] >> 2;
-            if (ref >= 0) {
-                int kc = BvhNodes.INNER * ref;
-                axes[c] = inner[kc + 13] & 3;
-                box(out, o, 2 * c, kc);
-                box(out, o, 2 * c + 1, kc + 6);
-                refs[2 * c] = inner[kc + 12];
-                refs[2 * c + 1] = inner[kc + 13] >> 2;
-            } else {
-                box(out, o, 2 * c, k + 6 * c);
-                for (int a = 0; a < 3; a++) {
-                    out[o + 8 * a + 2 * c + 1] = Float.POSITIVE_INFINITY;
-                    out[o + 8 * a + 4 + 2 * c + 1] = Float.NEGATIVE_INFINITY;
+        int[] boxes = new int[4];
+        int count = 2;
+        int k = BvhNodes.INNER * i;
+        refs[0] = inner[k + 12];
+        boxes[0] = k;
+        refs[1] = inner[k + 13] >> 2;
+        boxes[1] = k + 6;
+        int[] opened = new int[3];
+        opened[0] = i;
+        int openedCount = 1;
+        while (count < 4) {
+            int pick = -1;
+            double largest = -1;
+            for (int c = 0; c < count; c++) {
+                if (refs[c] >= 0 && area(boxes[c]) > largest) {
+                    largest = area(boxes[c]);
+                    pick = c;
                 }
-                refs[2 * c] = ref;
-                refs[2 * c + 1] = 0;
+            }
+            if (pick < 0) {
+                break;
+            }
+            int j = refs[pick];
+            int kj = BvhNodes.INNER * j;
+            opened[openedCount++] = j;
+            refs[pick] = inner[kj + 12];
+            boxes[pick] = kj;
+            refs[count] = inner[kj + 13] >> 2;
+            boxes[count] = kj + 6;
+            count++;
+        }
+        for (int c = 0; c < 4; c++) {
+            if (c < count) {
+                box(out, o, c, boxes[c]);
+            } else {
+                for (int a = 0; a < 3; a++) {
+                    out[o + 8 * a + c] = Float.POSITIVE_INFINITY;
+                    out[o + 8 * a + 4 + c] = Float.NEGATIVE_INFINITY;
+                }
             }
         }
         int lo = 0, hi = 0;
         for (int oct = 0; oct < 8; oct++) {
-            int f0 = oct >> axis0 & 1, fl = oct >> axes[0] & 1, fr = oct >> axes[1] & 1;
-            int order = 0;
+            int[] order = new int[4];
+            int filled = visit(i, oct, refs, count, opened, openedCount, order, 0);
+            for (int c = 0; c < 4; c++) {
+                if (!contains(order, filled, c)) {
+                    order[filled++] = c; // empty slots last
+                }
+            }
+            int bits = 0;
             for (int j = 0; j < 4; j++) {
-                int p = (j >> 1) ^ f0;
-                int slot = 2 * p + ((j & 1) ^ (p == 0 ? fl : fr));
-                order |= slot << 2 * j;
+                bits |= order[j] << 2 * j;
             }
             if (oct < 4) {
-                lo |= order << 8 * oct;
+                lo |= bits << 8 * oct;
             } else {
-                hi |= order << 8 * (oct - 4);
+                hi |= bits << 8 * (oct - 4);
             }
         }
         out[o + 28] = Float.intBitsToFloat(lo);
         out[o + 29] = Float.intBitsToFloat(hi);
-        for (int s = 0; s < 4; s++) {
-            int ref = refs[s];
+        out[o + 30] = Float.intBitsToFloat(count);
+        for (int c = 0; c < 4; c++) {
             // An empty slot keeps reference 0: its box is never entered.
-            boolean empty = out[o + s] == Float.POSITIVE_INFINITY;
-            int r = ref >= 0 && !empty ? make(ref, out) : ref;
-            out[o + 24 + s] = Float.intBitsToFloat(r);
+            int r = c < count && refs[c] >= 0 ? make(refs[c], out) : c < count ? refs[c] : 0;
+            out[o + 24 + c] = Float.intBitsToFloat(r);
         }
         return w;
+    }
+
+    /** Appends the slots under binary node j in the binary tree's visit order for the octant. */
+    private int visit(int j, int oct, int[] refs, int count, int[] opened, int openedCount, int[] order, int n) {
+        int k = BvhNodes.INNER * j;
+        boolean rightFirst = (oct >> (inner[k + 13] & 3) & 1) != 0;
+        for (int side = 0; side < 2; side++) {
+            int child = (side == 0) != rightFirst ? inner[k + 12] : inner[k + 13] >> 2;
+            if (child >= 0 && contains(opened, openedCount, child)) {
+                n = visit(child, oct, refs, count, opened, openedCount, order, n);
+            } else {
+                for (int c = 0; c < count; c++) {
+                    if (refs[c] == child) {
+                        order[n++] = c;
+                    }
+                }
+            }
+        }
+        return n;
+    }
+
+    private static boolean contains(int[] a, int n, int v) {
+        for (int i = 0; i < n; i++) {
+            if (a[i] == v) {
+                return true;
+            }
+        }
+        return false;
+    }
+
+    /** Half the surface area of the box of six float bits at inner[k ..). */
+    private double area(int k) {
+        double x = (double) Float.intBitsToFloat(inner[k + 3]) - Float.intBitsToFloat(inner[k]);
+        double y = (double) Float.intBitsToFloat(inner[k + 4]) - Float.intBitsToFloat(inner[k + 1]);
+        double z = (double) Float.intBitsToFloat(inner[k + 5]) - Float.intBitsToFloat(inner[k + 2]);
+        return x * y + y * z + z * x;
     }
 
     /** Child slot s of the node at out[o ..) gets the box of six float bits at inner[k ..). */

@@ -37,11 +37,20 @@ public final class OctantTraversalSource {
                  * The packed engine's 4-wide float traversal, one copy per ray octant (instructor-only, kept out
                  * of the starter with {@code PackedTriangles}). Octant o has bit 1 set when d.x &lt; 0, bit 2 when
                  * d.y &lt; 0, bit 4 when d.z &lt; 0; in its copy the near and far planes of every axis sit at
-                 * constant offsets and each slab distance is one difference and one product with constant sign:
-                 * s·(b − o)·|1/d|. Node layout and the proof that no hit is lost: {@link PackedWide} and
-                 * docs/mesh-engine.md. The leaves run {@link PackedWide#leaf}: the double watertight test.
+                 * constant offsets. A slab distance is one FMA, b·i + c, with i = 1/d rounded to float and c a
+                 * float below −o·i for near planes, above it for far ones; the distances are compared as
+                 * their float bits, as ints. Node layout and the proof that no hit is lost: {@link PackedWide}
+                 * and docs/mesh-engine.md.
+                 *
+                 * <p>Each octant has two methods: {@code traceN} tests the leaves ({@link PackedWide#leaf}, the
+                 * double watertight test) and pops pending children after them; {@code downN} tests boxes and
+                 * descends until it reaches a leaf, and calls nothing, so that its loop keeps the ray in
+                 * registers. Pending children are longs: entry distance bits &lt;&lt; 32 | reference.
                  */
                 final class PackedOctants {
+                    /** What a descent returns when the stack is empty: no leaf is left. */
+                    static final long DONE = Long.MIN_VALUE;
+
                     private PackedOctants() {
                     }
 
@@ -49,18 +58,17 @@ public final class OctantTraversalSource {
                      * Closest (or any) hit below the closest hit so far ({@code ray[PackedWide.BEST]}): returns the
                      * leaf slot of the hit triangle, or −1 for none; {@code ray} holds the ray for the leaves
                      * ({@link PackedWide#leaf}) and gets the new closest hit. The ray is given in float for the
-                     * tree: on*, of*: origin coordinates rounded toward the box for near planes and away from it
-                     * for far planes; a*: |1/d|.
+                     * tree: c*: below −o·i for near planes (cn*), above for far ones (cf*); i*: 1/d.
                      */
-                    static int trace(int octant, PackedWide wide, int[] leaf, double[] tri, int[] refs, int[] entries, int base,
+                    static int trace(int octant, PackedWide wide, int[] leaf, double[] tri, long[] stack,
                             double[] ray, int axes, float cnx, float cny, float cnz, float cfx, float cfy, float cfz, float ix,
                             float iy, float iz, boolean anyHit) {
                         switch (octant) {
                 """);
         for (int o = 0; o < 8; o++) {
             s.append("            case ").append(o).append(":\n");
-            s.append("                return trace").append(o).append("(wide.node, wide.root, leaf, tri, refs, entries, base, ray, axes, cnx, cny,\n");
-            s.append("                        cnz, cfx, cfy, cfz, ix, iy, iz, anyHit);\n");
+            s.append("                return trace").append(o).append("(wide.node, wide.root, leaf, tri, stack, ray, axes, cnx, cny, cnz,\n");
+            s.append("                        cfx, cfy, cfz, ix, iy, iz, anyHit);\n");
         }
         s.append("""
                             default:
@@ -75,47 +83,72 @@ public final class OctantTraversalSource {
         return s.toString();
     }
 
-    /** One octant's traversal. */
+    /** One octant's traversal: the leaf loop and the descent. */
     static String octant(int o) {
         boolean nx = (o & 1) != 0, ny = (o & 2) != 0, nz = (o & 4) != 0;
         String body = """
 
-                    /** Octant %d: d.x %s 0, d.y %s 0, d.z %s 0. */
-                    private static int trace%d(float[] node, int root, int[] leaf, double[] tri, int[] refs, int[] entries,
-                            int base, double[] ray, int axes, float cnx, float cny, float cnz, float cfx, float cfy, float cfz,
-                            float ix, float iy, float iz, boolean anyHit) {
+                    /** Octant %1$d: d.x %2$s 0, d.y %3$s 0, d.z %4$s 0. */
+                    private static int trace%1$d(float[] node, int root, int[] leaf, double[] tri, long[] stack,
+                            double[] ray, int axes, float cnx, float cny, float cnz, float cfx, float cfy, float cfz, float ix,
+                            float iy, float iz, boolean anyHit) {
                         int t1 = PackedWide.exitBits(Math.min(ray[PackedWide.BEST], ray[PackedWide.TMAX]));
-                        int top = base;
+                        int top = 0;
                         int ref = root;
                         int bestSlot = -1;
-                        traversal:
                         while (true) {
-                            if (ref < 0) {
-                                long r = PackedWide.leaf(~ref, leaf, tri, ray, axes, anyHit);
-                                if ((int) r >= 0) {
-                                    bestSlot = (int) r;
-                                    t1 = (int) (r >>> 32);
-                                    if (anyHit) {
-                                        break;
-                                    }
+                            long r = down%1$d(node, stack, top, ref, t1, cnx, cny, cnz, cfx, cfy, cfz, ix, iy, iz);
+                            if (r == DONE) {
+                                return bestSlot;
+                            }
+                            top = (int) (r >>> 32);
+                            long h = PackedWide.leaf(~(int) r, leaf, tri, ray, axes, anyHit);
+                            if ((int) h >= 0) {
+                                bestSlot = (int) h;
+                                t1 = (int) (h >>> 32);
+                                if (anyHit) {
+                                    return bestSlot;
                                 }
-                            } else {
-                                int k = ref << 5;
-                                int order = Float.floatToRawIntBits(node[k + %d])%s;
-                %s                }
+                            }
                             // Pop the nearest pending child that can still hold a closer hit.
+                            ref = 0;
                             while (true) {
-                                if (top == base) {
-                                    break traversal;
+                                if (top == 0) {
+                                    return bestSlot;
                                 }
-                                top--;
-                                if (entries[top] <= t1 + PackedWide.K) {
-                                    ref = refs[top];
+                                long e = stack[--top];
+                                if ((int) (e >> 32) <= t1 + PackedWide.K) {
+                                    ref = (int) e;
                                     break;
                                 }
                             }
                         }
-                        return bestSlot;
+                    }
+
+                    /**
+                     * Octant %1$d's descent from ref: box tests and pops until a leaf; returns top << 32 | the leaf's
+                     * reference, or {@link #DONE}.
+                     */
+                    private static long down%1$d(float[] node, long[] stack, int top, int ref, int t1, float cnx,
+                            float cny, float cnz, float cfx, float cfy, float cfz, float ix, float iy, float iz) {
+                        while (true) {
+                            if (ref < 0) {
+                                return (long) top << 32 | (ref & 0xffffffffL);
+                            }
+                            int k = ref << 5;
+                            int order = Float.floatToRawIntBits(node[k + %5$d])%6$s;
+                %7$s            // Pop the nearest pending child that can still hold a closer hit.
+                            while (true) {
+                                if (top == 0) {
+                                    return DONE;
+                                }
+                                long e = stack[--top];
+                                if ((int) (e >> 32) <= t1 + PackedWide.K) {
+                                    ref = (int) e;
+                                    break;
+                                }
+                            }
+                        }
                     }
                 """;
         StringBuilder slots = new StringBuilder();
@@ -123,23 +156,23 @@ public final class OctantTraversalSource {
         for (int j = 3; j >= 0; j--) {
             slots.append(slot(j, nx, ny, nz));
         }
-        return String.format(body, o, nx ? "<" : ">", ny ? "<" : ">", nz ? "<" : ">", o, 28 + (o >> 2),
+        return String.format(body, o, nx ? "<" : ">", ny ? "<" : ">", nz ? "<" : ">", 28 + (o >> 2),
                 (o & 3) == 0 ? "" : " >>> " + 8 * (o & 3), slots);
     }
 
-    /** The box test of the child at visit position j, and its branch-free push. */
+    /** The box test of the child at visit position j, and its push when the ray enters the box. */
     static String slot(int j, boolean nx, boolean ny, boolean nz) {
         String sel = j == 0 ? "(order & 3)" : "(order >>> " + 2 * j + " & 3)";
-        return "                {\n"
-                + "                    int b = k + " + sel + ";\n"
-                + "                    int in = Math.max(Math.max(" + plane(nx ? 4 : 0, "n", "x") + ", " + plane(ny ? 12 : 8, "n", "y")
-                + "),\n                            " + plane(nz ? 20 : 16, "n", "z") + ");\n"
-                + "                    int out = Math.min(Math.min(" + plane(nx ? 0 : 4, "f", "x") + ", " + plane(ny ? 8 : 12, "f", "y")
+        return "            {\n"
+                + "                int b = k + " + sel + ";\n"
+                + "                int in = Math.max(Math.max(" + plane(nx ? 4 : 0, "n", "x") + ", " + plane(ny ? 12 : 8, "n", "y")
+                + "),\n                        " + plane(nz ? 20 : 16, "n", "z") + ");\n"
+                + "                int out = Math.min(Math.min(" + plane(nx ? 0 : 4, "f", "x") + ", " + plane(ny ? 8 : 12, "f", "y")
                 + "),\n                            Math.min(" + plane(nz ? 16 : 20, "f", "z") + ", t1)) + PackedWide.K;\n"
-                + "                    refs[top] = Float.floatToRawIntBits(node[b + 24]);\n"
-                + "                    entries[top] = in;\n"
-                + "                    top += in <= out ? 1 : 0;\n"
-                + "                }\n";
+                + "                if (in <= out) {\n"
+                + "                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);\n"
+                + "                }\n"
+                + "            }\n";
     }
 
     /** A slab distance b·(1/d) + c as float bits: one FMA. */
