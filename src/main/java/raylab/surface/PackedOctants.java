@@ -112,24 +112,31 @@ final class PackedOctants {
             }
             int k = ref << 5;
             int order = Float.floatToRawIntBits(node[k + 28]);
-            {
+            int count = Float.floatToRawIntBits(node[k + 30]);
+            int top0 = top;
+            int next = 0;
+            if (count > 3) {
                 int b = k + (order >>> 6 & 3);
                 int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
                         Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
                 int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
                             Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
                 if (in <= out) {
-                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                    int r = Float.floatToRawIntBits(node[b + 24]);
+                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                    next = r;
                 }
             }
-            {
+            if (count > 2) {
                 int b = k + (order >>> 4 & 3);
                 int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
                         Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
                 int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
                             Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
                 if (in <= out) {
-                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                    int r = Float.floatToRawIntBits(node[b + 24]);
+                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                    next = r;
                 }
             }
             {
@@ -139,7 +146,9 @@ final class PackedOctants {
                 int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
                             Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
                 if (in <= out) {
-                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                    int r = Float.floatToRawIntBits(node[b + 24]);
+                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                    next = r;
                 }
             }
             {
@@ -149,8 +158,17 @@ final class PackedOctants {
                 int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
                             Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
                 if (in <= out) {
-                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                    int r = Float.floatToRawIntBits(node[b + 24]);
+                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                    next = r;
                 }
+            }
+            if (top != top0) {
+                // The nearest child entered: down to it at once (its copy on the stack is dropped),
+                // so that the next node's address does not wait for the stack.
+                top--;
+                ref = next;
+                continue;
             }
             // Pop the nearest pending child that can still hold a closer hit.
             while (true) {
@@ -215,24 +233,31 @@ final class PackedOctants {
             }
             int k = ref << 5;
             int order = Float.floatToRawIntBits(node[k + 28]) >>> 8;
-            {
+            int count = Float.floatToRawIntBits(node[k + 30]);
+            int top0 = top;
+            int next = 0;
+            if (count > 3) {
                 int b = k + (order >>> 6 & 3);
                 int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
                         Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
                 int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
                             Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
                 if (in <= out) {
-                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                    int r = Float.floatToRawIntBits(node[b + 24]);
+                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                    next = r;
                 }
             }
-            {
+            if (count > 2) {
                 int b = k + (order >>> 4 & 3);
                 int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
                         Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
                 int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
                             Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
                 if (in <= out) {
-                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                    int r = Float.floatToRawIntBits(node[b + 24]);
+                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                    next = r;
                 }
             }
             {
@@ -242,7 +267,9 @@ final class PackedOctants {
                 int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
                             Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
                 if (in <= out) {
-                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                    int r = Float.floatToRawIntBits(node[b + 24]);
+                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                    next = r;
                 }
             }
             {
@@ -252,8 +279,17 @@ final class PackedOctants {
                 int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
                             Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
                 if (in <= out) {
-                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                    int r = Float.floatToRawIntBits(node[b + 24]);
+                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                    next = r;
                 }
+            }
+            if (top != top0) {
+                // The nearest child entered: down to it at once (its copy on the stack is dropped),
+                // so that the next node's address does not wait for the stack.
+                top--;
+                ref = next;
+                continue;
             }
             // Pop the nearest pending child that can still hold a closer hit.
             while (true) {
@@ -318,24 +354,31 @@ final class PackedOctants {
             }
             int k = ref << 5;
             int order = Float.floatToRawIntBits(node[k + 28]) >>> 16;
-            {
+            int count = Float.floatToRawIntBits(node[k + 30]);
+            int top0 = top;
+            int next = 0;
+            if (count > 3) {
                 int b = k + (order >>> 6 & 3);
                 int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
                         Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
                 int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
                             Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
                 if (in <= out) {
-                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                    int r = Float.floatToRawIntBits(node[b + 24]);
+                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                    next = r;
                 }
             }
-            {
+            if (count > 2) {
                 int b = k + (order >>> 4 & 3);
                 int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
                         Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
                 int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
                             Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
                 if (in <= out) {
-                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                    int r = Float.floatToRawIntBits(node[b + 24]);
+                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                    next = r;
                 }
             }
             {
@@ -345,7 +388,9 @@ final class PackedOctants {
                 int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
                             Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
                 if (in <= out) {
-                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                    int r = Float.floatToRawIntBits(node[b + 24]);
+                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                    next = r;
                 }
             }
             {
@@ -355,8 +400,17 @@ final class PackedOctants {
                 int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
                             Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
                 if (in <= out) {
-                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                    int r = Float.floatToRawIntBits(node[b + 24]);
+                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                    next = r;
                 }
+            }
+            if (top != top0) {
+                // The nearest child entered: down to it at once (its copy on the stack is dropped),
+                // so that the next node's address does not wait for the stack.
+                top--;
+                ref = next;
+                continue;
             }
             // Pop the nearest pending child that can still hold a closer hit.
             while (true) {
@@ -421,24 +475,31 @@ final class PackedOctants {
             }
             int k = ref << 5;
             int order = Float.floatToRawIntBits(node[k + 28]) >>> 24;
-            {
+            int count = Float.floatToRawIntBits(node[k + 30]);
+            int top0 = top;
+            int next = 0;
+            if (count > 3) {
                 int b = k + (order >>> 6 & 3);
                 int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
                         Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
                 int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
                             Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
                 if (in <= out) {
-                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                    int r = Float.floatToRawIntBits(node[b + 24]);
+                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                    next = r;
                 }
             }
-            {
+            if (count > 2) {
                 int b = k + (order >>> 4 & 3);
                 int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
                         Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
                 int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
                             Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
                 if (in <= out) {
-                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                    int r = Float.floatToRawIntBits(node[b + 24]);
+                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                    next = r;
                 }
             }
             {
@@ -448,7 +509,9 @@ final class PackedOctants {
                 int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
                             Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
                 if (in <= out) {
-                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                    int r = Float.floatToRawIntBits(node[b + 24]);
+                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                    next = r;
                 }
             }
             {
@@ -458,8 +521,17 @@ final class PackedOctants {
                 int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
                             Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
                 if (in <= out) {
-                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                    int r = Float.floatToRawIntBits(node[b + 24]);
+                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                    next = r;
                 }
+            }
+            if (top != top0) {
+                // The nearest child entered: down to it at once (its copy on the stack is dropped),
+                // so that the next node's address does not wait for the stack.
+                top--;
+                ref = next;
+                continue;
             }
             // Pop the nearest pending child that can still hold a closer hit.
             while (true) {
@@ -524,24 +596,31 @@ final class PackedOctants {
             }
             int k = ref << 5;
             int order = Float.floatToRawIntBits(node[k + 29]);
-            {
+            int count = Float.floatToRawIntBits(node[k + 30]);
+            int top0 = top;
+            int next = 0;
+            if (count > 3) {
                 int b = k + (order >>> 6 & 3);
                 int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
                         Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
                 int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
                             Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
                 if (in <= out) {
-                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                    int r = Float.floatToRawIntBits(node[b + 24]);
+                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                    next = r;
                 }
             }
-            {
+            if (count > 2) {
                 int b = k + (order >>> 4 & 3);
                 int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
                         Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
                 int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
                             Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
                 if (in <= out) {
-                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                    int r = Float.floatToRawIntBits(node[b + 24]);
+                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                    next = r;
                 }
             }
             {
@@ -551,7 +630,9 @@ final class PackedOctants {
                 int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
                             Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
                 if (in <= out) {
-                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                    int r = Float.floatToRawIntBits(node[b + 24]);
+                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                    next = r;
                 }
             }
             {
@@ -561,8 +642,17 @@ final class PackedOctants {
                 int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
                             Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
                 if (in <= out) {
-                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                    int r = Float.floatToRawIntBits(node[b + 24]);
+                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                    next = r;
                 }
+            }
+            if (top != top0) {
+                // The nearest child entered: down to it at once (its copy on the stack is dropped),
+                // so that the next node's address does not wait for the stack.
+                top--;
+                ref = next;
+                continue;
             }
             // Pop the nearest pending child that can still hold a closer hit.
             while (true) {
@@ -627,24 +717,31 @@ final class PackedOctants {
             }
             int k = ref << 5;
             int order = Float.floatToRawIntBits(node[k + 29]) >>> 8;
-            {
+            int count = Float.floatToRawIntBits(node[k + 30]);
+            int top0 = top;
+            int next = 0;
+            if (count > 3) {
                 int b = k + (order >>> 6 & 3);
                 int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
                         Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
                 int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
                             Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
                 if (in <= out) {
-                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                    int r = Float.floatToRawIntBits(node[b + 24]);
+                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                    next = r;
                 }
             }
-            {
+            if (count > 2) {
                 int b = k + (order >>> 4 & 3);
                 int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
                         Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
                 int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
                             Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
                 if (in <= out) {
-                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                    int r = Float.floatToRawIntBits(node[b + 24]);
+                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                    next = r;
                 }
             }
             {
@@ -654,7 +751,9 @@ final class PackedOctants {
                 int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
                             Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
                 if (in <= out) {
-                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                    int r = Float.floatToRawIntBits(node[b + 24]);
+                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                    next = r;
                 }
             }
             {
@@ -664,8 +763,17 @@ final class PackedOctants {
                 int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
                             Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
                 if (in <= out) {
-                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                    int r = Float.floatToRawIntBits(node[b + 24]);
+                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                    next = r;
                 }
+            }
+            if (top != top0) {
+                // The nearest child entered: down to it at once (its copy on the stack is dropped),
+                // so that the next node's address does not wait for the stack.
+                top--;
+                ref = next;
+                continue;
             }
             // Pop the nearest pending child that can still hold a closer hit.
             while (true) {
@@ -730,24 +838,31 @@ final class PackedOctants {
             }
             int k = ref << 5;
             int order = Float.floatToRawIntBits(node[k + 29]) >>> 16;
-            {
+            int count = Float.floatToRawIntBits(node[k + 30]);
+            int top0 = top;
+            int next = 0;
+            if (count > 3) {
                 int b = k + (order >>> 6 & 3);
                 int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
                         Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
                 int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
                             Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
                 if (in <= out) {
-                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                    int r = Float.floatToRawIntBits(node[b + 24]);
+                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                    next = r;
                 }
             }
-            {
+            if (count > 2) {
                 int b = k + (order >>> 4 & 3);
                 int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
                         Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
                 int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
                             Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
                 if (in <= out) {
-                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                    int r = Float.floatToRawIntBits(node[b + 24]);
+                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                    next = r;
                 }
             }
             {
@@ -757,7 +872,9 @@ final class PackedOctants {
                 int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
                             Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
                 if (in <= out) {
-                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                    int r = Float.floatToRawIntBits(node[b + 24]);
+                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                    next = r;
                 }
             }
             {
@@ -767,8 +884,17 @@ final class PackedOctants {
                 int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
                             Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
                 if (in <= out) {
-                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                    int r = Float.floatToRawIntBits(node[b + 24]);
+                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                    next = r;
                 }
+            }
+            if (top != top0) {
+                // The nearest child entered: down to it at once (its copy on the stack is dropped),
+                // so that the next node's address does not wait for the stack.
+                top--;
+                ref = next;
+                continue;
             }
             // Pop the nearest pending child that can still hold a closer hit.
             while (true) {
@@ -833,24 +959,31 @@ final class PackedOctants {
             }
             int k = ref << 5;
             int order = Float.floatToRawIntBits(node[k + 29]) >>> 24;
-            {
+            int count = Float.floatToRawIntBits(node[k + 30]);
+            int top0 = top;
+            int next = 0;
+            if (count > 3) {
                 int b = k + (order >>> 6 & 3);
                 int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
                         Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
                 int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
                             Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
                 if (in <= out) {
-                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                    int r = Float.floatToRawIntBits(node[b + 24]);
+                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                    next = r;
                 }
             }
-            {
+            if (count > 2) {
                 int b = k + (order >>> 4 & 3);
                 int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
                         Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
                 int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
                             Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
                 if (in <= out) {
-                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                    int r = Float.floatToRawIntBits(node[b + 24]);
+                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                    next = r;
                 }
             }
             {
@@ -860,7 +993,9 @@ final class PackedOctants {
                 int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
                             Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
                 if (in <= out) {
-                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                    int r = Float.floatToRawIntBits(node[b + 24]);
+                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                    next = r;
                 }
             }
             {
@@ -870,8 +1005,17 @@ final class PackedOctants {
                 int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
                             Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
                 if (in <= out) {
-                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);
+                    int r = Float.floatToRawIntBits(node[b + 24]);
+                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                    next = r;
                 }
+            }
+            if (top != top0) {
+                // The nearest child entered: down to it at once (its copy on the stack is dropped),
+                // so that the next node's address does not wait for the stack.
+                top--;
+                ref = next;
+                continue;
             }
             // Pop the nearest pending child that can still hold a closer hit.
             while (true) {

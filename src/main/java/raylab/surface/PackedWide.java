@@ -236,16 +236,17 @@ final class PackedWide {
     }
 
     /**
-     * A float strictly below the exact value that the double q approximates (q = −o·i, one
-     * rounding in double, far below a float's ulp): one float step below q rounded down.
+     * A float below the exact value that the double q approximates (q = −o·i, one rounding in
+     * double): q lowered by 2⁻²²·|q| + 2⁻¹⁴⁰, more than the double's error and the rounding to float
+     * (half a float ulp: at most 2⁻²⁴·|q|, or 2⁻¹⁵⁰ below the normal range) together. Branch-free.
      */
     static float below(double q) {
-        return Math.nextDown(BvhBuilder.down(q));
+        return (float) (q - Math.abs(q) * 0x1p-22 - 0x1p-140);
     }
 
-    /** A float strictly above the exact value that the double q approximates (as {@link #below}). */
+    /** A float above the exact value that the double q approximates (as {@link #below}). */
     static float above(double q) {
-        return Math.nextUp(BvhBuilder.up(q));
+        return (float) (q + Math.abs(q) * 0x1p-22 + 0x1p-140);
     }
 
     /** Bytes held. */

@@ -137,7 +137,17 @@ public final class OctantTraversalSource {
                             }
                             int k = ref << 5;
                             int order = Float.floatToRawIntBits(node[k + %5$d])%6$s;
-                %7$s            // Pop the nearest pending child that can still hold a closer hit.
+                            int count = Float.floatToRawIntBits(node[k + 30]);
+                            int top0 = top;
+                            int next = 0;
+                %7$s            if (top != top0) {
+                                // The nearest child entered: down to it at once (its copy on the stack is dropped),
+                                // so that the next node's address does not wait for the stack.
+                                top--;
+                                ref = next;
+                                continue;
+                            }
+                            // Pop the nearest pending child that can still hold a closer hit.
                             while (true) {
                                 if (top == 0) {
                                     return DONE;
@@ -163,14 +173,16 @@ public final class OctantTraversalSource {
     /** The box test of the child at visit position j, and its push when the ray enters the box. */
     static String slot(int j, boolean nx, boolean ny, boolean nz) {
         String sel = j == 0 ? "(order & 3)" : "(order >>> " + 2 * j + " & 3)";
-        return "            {\n"
+        return "            " + (j == 3 ? "if (count > 3) " : j == 2 ? "if (count > 2) " : "") + "{\n"
                 + "                int b = k + " + sel + ";\n"
                 + "                int in = Math.max(Math.max(" + plane(nx ? 4 : 0, "n", "x") + ", " + plane(ny ? 12 : 8, "n", "y")
                 + "),\n                        " + plane(nz ? 20 : 16, "n", "z") + ");\n"
                 + "                int out = Math.min(Math.min(" + plane(nx ? 0 : 4, "f", "x") + ", " + plane(ny ? 8 : 12, "f", "y")
                 + "),\n                            Math.min(" + plane(nz ? 16 : 20, "f", "z") + ", t1)) + PackedWide.K;\n"
                 + "                if (in <= out) {\n"
-                + "                    stack[top++] = (long) in << 32 | (Float.floatToRawIntBits(node[b + 24]) & 0xffffffffL);\n"
+                + "                    int r = Float.floatToRawIntBits(node[b + 24]);\n"
+                + "                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);\n"
+                + "                    next = r;\n"
                 + "                }\n"
                 + "            }\n";
     }
