@@ -27,7 +27,7 @@ for r in $(seq 1 "${2:-3}"); do
   for L in ${1:-6}; do
     [ -f "$out/ico$L.obj" ] || python3 "$harness/meshgen.py" "$L" "$out/ico$L.obj"
     echo "{\"round\":$r,\"level\":$L,\"engine\":\"embree\",\"load\":\"$(cut -d' ' -f1 /proc/loadavg)\",\"result\":$("$out/embree_bench_cpu" "$out/ico$L.obj" 1024 768 1 3)}"
-    for mode in float double; do
+    for mode in ${RAYLAB_MODES:-wide double}; do
       res=$(java -Draylab.mesh.traversal=$mode -jar "$root/target/raylab.jar" bench --obj "$out/ico$L.obj" --threads 1 --warmup 2 --runs 3 | tail -1)
       echo "{\"round\":$r,\"level\":$L,\"engine\":\"raylab-$mode\",\"load\":\"$(cut -d' ' -f1 /proc/loadavg)\",\"result\":$res}"
     done

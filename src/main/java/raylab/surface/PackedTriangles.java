@@ -77,6 +77,21 @@ final class PackedTriangles implements Mesh.Engine {
         return intersectDouble(rec, ray, anyHit);
     }
 
+    /** Whether the ray takes the 4-wide traversal (by default, and when its bounds hold). */
+    boolean takesWide(Ray ray) {
+        return WIDE_TRAVERSAL && n > 0 && wide.inRange && inFloatRange(ray);
+    }
+
+    /** The binary tree (for tests). */
+    BvhNodes tree() {
+        return tree;
+    }
+
+    /** The 4-wide tree (for tests). */
+    PackedWide wide() {
+        return wide;
+    }
+
     /** The 4-wide traversal where its bounds hold, else the double one (for tests and benchmarks). */
     boolean intersectWideWherePossible(IntersectionRecord rec, Ray ray, boolean anyHit) {
         if (n == 0) {
