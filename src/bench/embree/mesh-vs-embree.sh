@@ -3,8 +3,8 @@
 # usage: src/bench/embree/mesh-vs-embree.sh [LEVELS] [ROUNDS]     (defaults: "6", 3)
 # Builds the shared harness (../shared/bench/embree, or $EMBREE_BENCH_DIR) once with its
 # timer switched to process CPU time (one tracing thread), makes its meshes, packages
-# target/raylab.jar if missing, then per round and level runs: Embree, raylab with the float
-# traversal (-Draylab.mesh.traversal=float), raylab with the double traversal (the default). Every line is
+# target/raylab.jar if missing, then per round and level runs: Embree, raylab with the 4-wide
+# traversal (the default; $RAYLAB_MODES overrides), raylab with -Draylab.mesh.traversal=double. Every line is
 # one JSON object; raylab's cpu_* fields are rays per second of the tracing thread's CPU time.
 set -eu
 root=$(cd "$(dirname "$0")/../../.." && pwd)
