@@ -3,8 +3,8 @@
 # usage: src/bench/embree/mesh-vs-embree.sh [LEVELS] [ROUNDS]     (defaults: "6", 3)
 # Builds the shared harness (../shared/bench/embree, or $EMBREE_BENCH_DIR) once with its
 # timer switched to process CPU time (one tracing thread), makes its meshes, packages
-# target/raylab.jar if missing, then per round and level runs: Embree, raylab with the float
-# traversal (-Draylab.mesh.traversal=float), raylab with the double traversal (the default). Every line is
+# target/raylab.jar if missing, then per round and level runs: Embree, raylab with the 4-wide
+# traversal (the default; $RAYLAB_MODES overrides), raylab with -Draylab.mesh.traversal=double. Every line is
 # one JSON object; raylab's cpu_* fields are rays per second of the tracing thread's CPU time.
 set -eu
 root=$(cd "$(dirname "$0")/../../.." && pwd)
@@ -27,7 +27,7 @@ for r in $(seq 1 "${2:-3}"); do
   for L in ${1:-6}; do
     [ -f "$out/ico$L.obj" ] || python3 "$harness/meshgen.py" "$L" "$out/ico$L.obj"
     echo "{\"round\":$r,\"level\":$L,\"engine\":\"embree\",\"load\":\"$(cut -d' ' -f1 /proc/loadavg)\",\"result\":$("$out/embree_bench_cpu" "$out/ico$L.obj" 1024 768 1 3)}"
-    for mode in float double; do
+    for mode in ${RAYLAB_MODES:-wide double}; do
       res=$(java -Draylab.mesh.traversal=$mode -jar "$root/target/raylab.jar" bench --obj "$out/ico$L.obj" --threads 1 --warmup 2 --runs 3 | tail -1)
       echo "{\"round\":$r,\"level\":$L,\"engine\":\"raylab-$mode\",\"load\":\"$(cut -d' ' -f1 /proc/loadavg)\",\"result\":$res}"
     done

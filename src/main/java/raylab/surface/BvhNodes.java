@@ -48,6 +48,10 @@ final class BvhNodes {
         double[] entry = new double[256];
         /** Entry distances as float bits (the packed engine's float traversal). */
         int[] bits = new int[256];
+        /** Pending children of the packed engine's 4-wide traversal: entry bits << 32 | reference. */
+        long[] pending = new long[256];
+        /** The ray of the packed engine's 4-wide traversal, for its leaf test (instructor-only). */
+        final double[] ray = new double[16];
         int top;
     }
 
@@ -111,6 +115,7 @@ final class BvhNodes {
             f.refs = Arrays.copyOf(f.refs, cap);
             f.entry = Arrays.copyOf(f.entry, cap);
             f.bits = Arrays.copyOf(f.bits, cap);
+            f.pending = Arrays.copyOf(f.pending, cap);
         }
     }
 

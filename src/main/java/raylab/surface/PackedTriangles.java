@@ -23,36 +23,19 @@ final class PackedTriangles implements Mesh.Engine {
     private final double[] tri;
     private final BvhNodes tree;
     private final Material material;
-    /**
-     * Inner node i's two child boxes as 12 floats from 12 i, the planes of both children side by
-     * side: left min x, right min x, left min y, right min y, left min z, right min z, then the
-     * max planes in the same order. Rounded outward from the doubles, and snapped outward to 0 or
-     * ±2⁻⁷² when smaller than 2⁻⁷² in magnitude (see {@link #grid}).
-     */
-    private final float[] nodes;
-    /** Inner node i's left reference at 2 i, right reference·4 + split axis at 2 i + 1. */
-    private final int[] kids;
-    /** Whether every plane lies within ±2⁶⁰: the float traversal's range (else doubles only). */
-    private final boolean floatRange;
-
-    /** Smallest magnitude of a nonzero plane or origin coordinate in the float traversal. */
+    /** Smallest magnitude of a nonzero box plane in the float traversal (see {@link #grid}). */
     static final float TINY = 0x1p-72f;
-    /** Largest magnitude of a plane or origin coordinate in the float traversal. */
+    /** Largest magnitude of a box plane or origin coordinate in the float traversal. */
     static final double HUGE = 0x1p60;
     /** Range of |d| components in the float traversal. */
     static final double D_MIN = 0x1p-30, D_MAX = 0x1p30;
     /**
-     * Widening of exit distances: the float entry and exit are each within (1 + u)⁵ of exact
-     * (u = 2⁻²⁴: the difference, d to float, 1/d, the product, the widening's own rounding), so
-     * 1 + 16u covers (1 + u)⁴/(1 − u)⁵.
+     * Whether rays take the 4-wide float traversal where its bounds hold (the default), or the
+     * double traversal always (-Draylab.mesh.traversal=double).
      */
-    static final float WIDEN = 1 + 0x1p-20f;
-    /**
-     * Whether rays take the float traversal when they can: only with -Draylab.mesh.traversal=float.
-     * Measured in turns with the double traversal and Embree, it did not pay on JDK 17 here
-     * (docs/mesh-engine.md), so the double traversal is the default.
-     */
-    static final boolean FLOAT_TRAVERSAL = "float".equals(System.getProperty("raylab.mesh.traversal"));
+    static final boolean WIDE_TRAVERSAL = !"double".equals(System.getProperty("raylab.mesh.traversal"));
+    /** The 4-wide tree of the octant traversal. */
+    private final PackedWide wide;
 
     PackedTriangles(Mesh mesh, double[] tri, BvhNodes tree, Material material) {
         this.mesh = mesh;
@@ -60,25 +43,7 @@ final class PackedTriangles implements Mesh.Engine {
         this.tri = tri;
         this.tree = tree;
         this.material = material;
-        int inners = tree.innerCount();
-        nodes = new float[12 * inners];
-        kids = new int[2 * inners];
-        boolean range = true;
-        for (int i = 0; i < inners; i++) {
-            int k = BvhNodes.INNER * i;
-            for (int c = 0; c < 2; c++) {
-                for (int a = 0; a < 3; a++) {
-                    float lo = Float.intBitsToFloat(tree.inner[k + 6 * c + a]);
-                    float hi = Float.intBitsToFloat(tree.inner[k + 6 * c + 3 + a]);
-                    range &= Math.abs(lo) <= HUGE && Math.abs(hi) <= HUGE;
-                    nodes[12 * i + 2 * a + c] = grid(lo, false);
-                    nodes[12 * i + 6 + 2 * a + c] = grid(hi, true);
-                }
-            }
-            kids[2 * i] = tree.inner[k + 12];
-            kids[2 * i + 1] = tree.inner[k + 13];
-        }
-        floatRange = range;
+        wide = new PackedWide(tree);
     }
 
     /**
@@ -98,7 +63,7 @@ final class PackedTriangles implements Mesh.Engine {
 
     @Override
     public long bytes() {
-        return 4L * nodes.length + 4L * kids.length;
+        return wide.bytes();
     }
 
     @Override
@@ -106,67 +71,50 @@ final class PackedTriangles implements Mesh.Engine {
         if (n == 0) {
             return false;
         }
-        if (FLOAT_TRAVERSAL && floatRange && inFloatRange(ray)) {
-            return intersectFloat(rec, ray, anyHit);
+        if (WIDE_TRAVERSAL && wide.inRange && inFloatRange(ray)) {
+            return intersectWide(rec, ray, anyHit);
         }
         return intersectDouble(rec, ray, anyHit);
     }
 
-    /** The float traversal where its bounds hold, else the double one (for tests and benchmarks). */
-    boolean intersectFloatWherePossible(IntersectionRecord rec, Ray ray, boolean anyHit) {
+    /** Whether the ray takes the 4-wide traversal (by default, and when its bounds hold). */
+    boolean takesWide(Ray ray) {
+        return WIDE_TRAVERSAL && n > 0 && wide.inRange && inFloatRange(ray);
+    }
+
+    /** The binary tree (for tests). */
+    BvhNodes tree() {
+        return tree;
+    }
+
+    /** The 4-wide tree (for tests). */
+    PackedWide wide() {
+        return wide;
+    }
+
+    /** The 4-wide traversal where its bounds hold, else the double one (for tests and benchmarks). */
+    boolean intersectWideWherePossible(IntersectionRecord rec, Ray ray, boolean anyHit) {
         if (n == 0) {
             return false;
         }
-        return floatRange && inFloatRange(ray) ? intersectFloat(rec, ray, anyHit) : intersectDouble(rec, ray, anyHit);
-    }
-
-    /** Whether the float traversal's bounds hold for this ray (NaN fails every comparison). */
-    private static boolean inFloatRange(Ray ray) {
-        double dx = Math.abs(ray.d.x), dy = Math.abs(ray.d.y), dz = Math.abs(ray.d.z);
-        return ray.tMin >= 0 && dx >= D_MIN && dx <= D_MAX && dy >= D_MIN && dy <= D_MAX && dz >= D_MIN && dz <= D_MAX
-                && Math.abs(ray.p.x) <= HUGE && Math.abs(ray.p.y) <= HUGE && Math.abs(ray.p.z) <= HUGE;
-    }
-
-    /** The origin coordinate rounded to a float on the grid of {@link #grid}, up or down. */
-    static float origin(double p, boolean up) {
-        return grid(up ? BvhBuilder.up(p) : BvhBuilder.down(p), up);
-    }
-
-    /** The float t ≥ t (t ≥ 0), widened by {@link #WIDEN}, as raw bits (+∞ for +∞). */
-    private static int exitBits(double t) {
-        return Float.floatToRawIntBits(BvhBuilder.up(t) * WIDEN);
+        return wide.inRange && inFloatRange(ray) ? intersectWide(rec, ray, anyHit) : intersectDouble(rec, ray, anyHit);
     }
 
     /**
-     * Closest (or any) hit with the float traversal: slab distances in float, s·(b − o)·|1/d| with
-     * s the sign of d, so that every slab distance is a product of positive factors, −0 never
-     * appears, and distances ≥ 0 compare as their raw bits (as ints: branch-free max and min). An
-     * origin coordinate is rounded toward the box for entry planes and away for exit planes, exit
-     * distances and the closest hit are widened by {@link #WIDEN}: no box the exact ray enters
-     * before the closest hit is culled, and the double watertight test at the leaves decides.
-     * Negative distances (planes behind the origin) are negative ints and never win a max against
-     * tMin ≥ 0, and an exit below 0 loses against every entry. Same visiting order as
-     * {@link #intersectDouble}: left child first unless the ray goes toward −∞ along the split axis.
+     * Closest (or any) hit with the 4-wide float traversal ({@link PackedOctants}, one copy per ray
+     * octant), for rays within the float bounds ({@link #inFloatRange}).
      */
-    private boolean intersectFloat(IntersectionRecord rec, Ray ray, boolean anyHit) {
+    private boolean intersectWide(IntersectionRecord rec, Ray ray, boolean anyHit) {
         final double px = ray.p.x, py = ray.p.y, pz = ray.p.z;
         final double dx = ray.d.x, dy = ray.d.y, dz = ray.d.z;
-        final double tMin = ray.tMin, tMax = ray.tMax;
         final boolean gx = dx < 0, gy = dy < 0, gz = dz < 0;
-        final int negative = (gx ? 1 : 0) | (gy ? 2 : 0) | (gz ? 4 : 0);
-        // Per axis: near planes at offset a (min planes, or max ones when d < 0), far at 6 − a.
-        final int nx = gx ? 6 : 0, ny = gy ? 8 : 2, nz = gz ? 10 : 4;
-        final int fx = gx ? 0 : 6, fy = gy ? 2 : 8, fz = gz ? 4 : 10;
-        final float sx = gx ? -1f : 1f, sy = gy ? -1f : 1f, sz = gz ? -1f : 1f;
-        // −s·o with o rounded toward the box for the near side (d > 0: up) and away for the far side.
-        final float qnx = -sx * origin(px, !gx), qfx = -sx * origin(px, gx);
-        final float qny = -sy * origin(py, !gy), qfy = -sy * origin(py, gy);
-        final float qnz = -sz * origin(pz, !gz), qfz = -sz * origin(pz, gz);
-        final float ax = Math.abs(1f / (float) dx), ay = Math.abs(1f / (float) dy), az = Math.abs(1f / (float) dz);
-        final float wx = ax * WIDEN, wy = ay * WIDEN, wz = az * WIDEN;
-        // The search starts at t = 0, not tMin: a triangle whose plane holds p is hit at t = 0 or
-        // not at all, and its computed t may straddle a small tMin (the leaf test applies tMin).
-        final int tMinBits = 0;
+        final int octant = (gx ? 1 : 0) | (gy ? 2 : 0) | (gz ? 4 : 0);
+        // Slab distance b·i + c with i = 1/d in float, c below −o·i for near planes, above for far ones.
+        final float ix = (float) (1.0 / dx), iy = (float) (1.0 / dy), iz = (float) (1.0 / dz);
+        final double qx = -px * ix, qy = -py * iy, qz = -pz * iz;
+        final float cnx = PackedWide.below(qx), cfx = PackedWide.above(qx);
+        final float cny = PackedWide.below(qy), cfy = PackedWide.above(qy);
+        final float cnz = PackedWide.below(qz), cfz = PackedWide.above(qz);
         // Ray space of the watertight test, as in Triangle.intersect.
         final int kz = largestAxis(dx, dy, dz);
         final int kx = kz == 2 ? 0 : kz + 1;
@@ -178,100 +126,40 @@ final class PackedTriangles implements Mesh.Engine {
         final double pkx = kx == 0 ? px : kx == 1 ? py : pz;
         final double pky = ky == 0 ? px : ky == 1 ? py : pz;
         final double pkz = kz == 0 ? px : kz == 1 ? py : pz;
-        final float[] nodes = this.nodes;
-        final int[] kids = this.kids;
-        final int[] leaf = tree.leaf;
-        final double[] tri = this.tri;
-        double best = rec.t;
-        if (BvhNodes.entry(tree.rootBox, 0, px, py, pz, 1.0 / dx, 1.0 / dy, 1.0 / dz, gx ? 3 : 0, gy ? 3 : 0,
-                gz ? 3 : 0, 0, widen(tMax < best ? tMax : best)) == Double.POSITIVE_INFINITY) {
-            return false;
-        }
-        int t1 = exitBits(tMax < best ? tMax : best);
         BvhNodes.Frames frames = BvhNodes.frames();
-        // The packed traversal calls nothing that traces, so it may use its frame without taking it.
-        BvhNodes.ensure(frames, frames.top + tree.depth + 1);
-        final int[] refs = frames.refs;
-        final int[] entries = frames.bits;
-        final int base = frames.top;
-        int top = base;
-        int ref = tree.rootRef;
-        int bestSlot = -1;
-        int tests = 0;
-        traversal:
-        while (true) {
-            if (ref < 0) {
-                int l = 2 * ~ref;
-                int end = leaf[l] + leaf[l + 1];
-                for (int s = leaf[l]; s < end; s++) {
-                    tests++;
-                    double t = hitT(tri, 9 * s, kx, ky, kz, shx, shy, shz, pkx, pky, pkz);
-                    if (t == t) { // a hit (not NaN): the plane rule
-                        t = planeRule(t, tri, 9 * s, px, py, pz);
-                    }
-                    // NaN (no hit) fails every comparison.
-                    if (t >= tMin && t <= tMax && t < best) {
-                        best = t;
-                        t1 = exitBits(t);
-                        bestSlot = s;
-                        if (anyHit) {
-                            break traversal;
-                        }
-                    }
-                }
-            } else {
-                int k = 12 * ref;
-                int lIn = Math.max(Math.max(bits(nodes[k + nx], sx, qnx, ax), bits(nodes[k + ny], sy, qny, ay)),
-                        Math.max(bits(nodes[k + nz], sz, qnz, az), tMinBits));
-                int rIn = Math.max(Math.max(bits(nodes[k + nx + 1], sx, qnx, ax), bits(nodes[k + ny + 1], sy, qny, ay)),
-                        Math.max(bits(nodes[k + nz + 1], sz, qnz, az), tMinBits));
-                int lOut = Math.min(Math.min(bits(nodes[k + fx], sx, qfx, wx), bits(nodes[k + fy], sy, qfy, wy)),
-                        Math.min(bits(nodes[k + fz], sz, qfz, wz), t1));
-                int rOut = Math.min(Math.min(bits(nodes[k + fx + 1], sx, qfx, wx), bits(nodes[k + fy + 1], sy, qfy, wy)),
-                        Math.min(bits(nodes[k + fz + 1], sz, qfz, wz), t1));
-                int packed = kids[2 * ref + 1];
-                boolean rightFirst = (negative >> (packed & 3) & 1) != 0;
-                boolean hitL = lIn <= lOut;
-                boolean hitR = rIn <= rOut;
-                int left = kids[2 * ref];
-                int right = packed >> 2;
-                if (hitL & hitR) {
-                    refs[top] = rightFirst ? left : right;
-                    entries[top++] = rightFirst ? lIn : rIn;
-                    ref = rightFirst ? right : left;
-                    continue;
-                }
-                if (hitL) {
-                    ref = left;
-                    continue;
-                }
-                if (hitR) {
-                    ref = right;
-                    continue;
-                }
-            }
-            while (true) {
-                if (top == base) {
-                    break traversal;
-                }
-                top--;
-                if (entries[top] <= t1) {
-                    ref = refs[top];
-                    break;
-                }
-            }
-        }
-        return finish(rec, anyHit, best, bestSlot, tests, kx, ky, kz, shx, shy, shz, pkx, pky, pkz);
+        // Each node pushes at most four children and pops one. The 4-wide traversal traces nothing
+        // else, so its stack of pending children starts at 0 whatever frames the caller has taken.
+        BvhNodes.ensure(frames, 3 * tree.depth + 8);
+        final double[] r = frames.ray;
+        r[PackedWide.PX] = px;
+        r[PackedWide.PY] = py;
+        r[PackedWide.PZ] = pz;
+        r[PackedWide.TMIN] = ray.tMin;
+        r[PackedWide.TMAX] = ray.tMax;
+        r[PackedWide.BEST] = rec.t;
+        r[PackedWide.SHX] = shx;
+        r[PackedWide.SHY] = shy;
+        r[PackedWide.SHZ] = shz;
+        r[PackedWide.PKX] = pkx;
+        r[PackedWide.PKY] = pky;
+        r[PackedWide.PKZ] = pkz;
+        r[PackedWide.TESTS] = 0;
+        int slot = PackedOctants.trace(octant, wide, tree.leaf, tri, frames.pending, r,
+                kx | ky << 2 | kz << 4, cnx, cny, cnz, cfx, cfy, cfz, ix, iy, iz, anyHit);
+        return finish(rec, anyHit, r[PackedWide.BEST], slot, (int) r[PackedWide.TESTS], kx, ky, kz, shx, shy, shz, pkx,
+                pky, pkz);
+    }
+
+    /** Whether the float traversal's bounds hold for this ray (NaN fails every comparison). */
+    private static boolean inFloatRange(Ray ray) {
+        double dx = Math.abs(ray.d.x), dy = Math.abs(ray.d.y), dz = Math.abs(ray.d.z);
+        return ray.tMin >= 0 && dx >= D_MIN && dx <= D_MAX && dy >= D_MIN && dy <= D_MAX && dz >= D_MIN && dz <= D_MAX
+                && Math.abs(ray.p.x) <= HUGE && Math.abs(ray.p.y) <= HUGE && Math.abs(ray.p.z) <= HUGE;
     }
 
     /** t moved away from 0 by 2γ3·|t|: above the rounding of a computed entry distance. */
     private static double widen(double t) {
         return t + Math.abs(t) * (BvhNodes.ROUND_UP - 1);
-    }
-
-    /** The slab distance s·(b − o)·a (s = ±1, q = −s·o, a = |1/d|, perhaps widened) as raw bits. */
-    private static int bits(float b, float s, float q, float a) {
-        return Float.floatToRawIntBits(Math.fma(b, s, q) * a);
     }
 
     private boolean finish(IntersectionRecord rec, boolean anyHit, double best, int bestSlot, int tests, int kx,
@@ -325,7 +213,7 @@ final class PackedTriangles implements Mesh.Engine {
         // The far end of the search, min(tMax, closest hit), widened: a computed entry distance
         // may exceed the exact one by its rounding (γ3), and a hit exactly at tMax must be seen.
         double t1 = widen(tMax < best ? tMax : best);
-        // The search starts at 0 (or below a negative tMin), as in intersectFloat.
+        // The search starts at 0 (or below a negative tMin), as in the 4-wide traversal.
         final double t0 = tMin > 0 ? 0 : tMin - Math.abs(tMin) * (BvhNodes.ROUND_UP - 1);
         if (BvhNodes.entry(tree.rootBox, 0, px, py, pz, ix, iy, iz, nx, ny, nz, t0, t1)
                 == Double.POSITIVE_INFINITY) {
@@ -446,7 +334,7 @@ final class PackedTriangles implements Mesh.Engine {
      * rounding): t = 0 if p is in the triangle's box, else no hit (NaN). Kept out of hitT so that
      * hitT stays small enough to be inlined.
      */
-    private static double planeRule(double t, double[] tri, int o, double px, double py, double pz) {
+    static double planeRule(double t, double[] tri, int o, double px, double py, double pz) {
         if (!inPlane(tri, o, px, py, pz)) {
             return t;
         }

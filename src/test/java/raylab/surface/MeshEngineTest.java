@@ -272,7 +272,7 @@ class MeshEngineTest {
 
     @ParameterizedTest(name = "seed {0}")
     @ValueSource(longs = {1, 2, 3, 4, 5, 6})
-    void theFloatTraversalVisitsWhatTheDoubleOneFinds(long seed) {
+    void theWideTraversalVisitsWhatTheDoubleOneFinds(long seed) {
         // Same triangle and t on every ray, tie or not: both traversals visit in the same order.
         List<Triangle> tris = randomMesh(seed);
         Mesh mesh = new Mesh(tris, "mesh");
@@ -285,10 +285,10 @@ class MeshEngineTest {
             for (boolean any : new boolean[] {false, true}) {
                 a.reset();
                 b.reset();
-                boolean ha = engine.intersectFloatWherePossible(a, ray, any);
                 boolean hb = engine.intersectDouble(b, ray, any);
+                boolean ha = engine.intersectWideWherePossible(a, ray, any);
                 String ctx = "seed " + seed + " " + ray + (any ? " any hit" : " closest");
-                assertEquals(hb, ha, ctx + ": hit? double " + b + ", float " + a);
+                assertEquals(hb, ha, ctx + ": hit? double " + b + ", 4-wide " + a);
                 if (hb && !any) {
                     assertEquals(Double.doubleToRawLongBits(b.t), Double.doubleToRawLongBits(a.t), ctx + ": t");
                     assertEquals(b.primitive, a.primitive, ctx + ": triangle");
