@@ -576,30 +576,17 @@ public final class StudentProcess implements AutoCloseable {
         }
     }
 
+    /** An exception in a MULTI reply: class, message, frames. */
     private RuntimeException throwable(Wire.In in) throws IOException {
-        String cls = in.readString();
-        String msg = in.readString();
-        int n = in.readInt();
-        if (n < 0 || n > 100) {
-            throw new Wire.ProtocolException("bad frame count");
-        }
-        List<String> frames = new ArrayList<>();
-        for (int i = 0; i < n; i++) {
-            frames.add(in.readString());
-        }
-        if (pendingFailure != null && cls.equals("raylab.remote.StudentServer$GraderFailure")) {
-            RuntimeException p = pendingFailure;
-            pendingFailure = null;
-            return p;
-        }
-        if ("raylab.course.NotImplemented".equals(cls)) {
-            return NotImplementedAgain.of(msg);
-        }
-        return new StudentException(cls, msg, frames, "");
+        return throwable(in, -1, false);
     }
 
+    /** A THROW frame: the call's index (−1: not in a batch), the exception, the output. */
     private RuntimeException thrown(Wire.In in) throws IOException {
-        int index = in.readInt();
+        return throwable(in, in.readInt(), true);
+    }
+
+    private RuntimeException throwable(Wire.In in, int index, boolean withOutput) throws IOException {
         String cls = in.readString();
         String msg = in.readString();
         int n = in.readInt();
@@ -610,7 +597,9 @@ public final class StudentProcess implements AutoCloseable {
         for (int i = 0; i < n; i++) {
             frames.add(in.readString());
         }
-        output(in.readString());
+        if (withOutput) {
+            output(in.readString());
+        }
         if (pendingFailure != null && cls.equals("raylab.remote.StudentServer$GraderFailure")) {
             RuntimeException p = pendingFailure;
             pendingFailure = null;
