@@ -17,7 +17,6 @@ import java.util.Map;
 
 import raylab.light.PointLight;
 import raylab.material.Material;
-import raylab.math.BoundingBox;
 import raylab.math.Color;
 import raylab.math.Vec3;
 import raylab.ray.IntersectionRecord;
@@ -226,8 +225,10 @@ public final class Speculation {
         for (int i = 0; i < args.length; i++) {
             Object x = args[i];
             before[i] = x instanceof IntersectionRecord r ? copy(r) : x;
-            asked[i] = x instanceof ShadingPoint at ? noting(at, answers, pure)
-                    : x instanceof Surface s && !(x.getClass().getName().equals(cls)) ? new Noting(s, answers, pure) : x;
+            // Only a shading point's questions are answered in advance: their arguments are the
+            // call's own (lights, l). A surface's would carry the reference's own rays (its
+            // shadow-ray offset) into the student process, so those are asked as they come.
+            asked[i] = x instanceof ShadingPoint at ? noting(at, answers, pure) : x;
         }
         Object result;
         try {
@@ -524,46 +525,6 @@ public final class Speculation {
                 return note(answers, pure, at, Wire.OP_AT_SPECULAR, new Object[] {light, l}, () -> at.specular(light, l));
             }
         });
-    }
-
-    /** The grader's surface as a prediction sees it: every question noted with its answer. */
-    private final class Noting extends Surface {
-        private final Surface s;
-        private final List<StudentProcess.Answered> answers;
-        private final List<Boolean> pure;
-
-        Noting(Surface s, List<StudentProcess.Answered> answers, List<Boolean> pure) {
-            super(s.material(), s.name());
-            this.s = s;
-            this.answers = answers;
-            this.pure = pure;
-        }
-
-        @Override
-        public boolean intersect(IntersectionRecord rec, Ray ray) {
-            return note(answers, pure, s, Wire.OP_INTERSECT, new Object[] {rec, ray}, () -> s.intersect(rec, ray));
-        }
-
-        @Override
-        public boolean intersectsAny(Ray ray, IntersectionRecord scratch) {
-            return note(answers, pure, s, Wire.OP_INTERSECTS_ANY, new Object[] {ray, scratch},
-                    () -> s.intersectsAny(ray, scratch));
-        }
-
-        @Override
-        public BoundingBox boundingBox() {
-            return s.boundingBox();
-        }
-
-        @Override
-        public boolean isConvex() {
-            return s.isConvex();
-        }
-
-        @Override
-        public int primitiveCount() {
-            return s.primitiveCount();
-        }
     }
 
     // --- records and values, bit for bit ---
