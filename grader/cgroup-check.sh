@@ -5,6 +5,7 @@
 # the score. Not a test: timing depends on the machine; run it by hand after changing the grader.
 #
 #   grader/cgroup-check.sh [--jar JAR] [--cpu 0.5] [--mem-mb 768] [--runs 1] [--milestone M]...
+#                          [--java-opt OPT]...   (options for the grader JVM, e.g. -Draylab.grade.boundary=false)
 #
 # Needs root and a cgroup file system: cgroup v2 (cpu.max, memory.max, memory.peak) or cgroup v1
 # (cpu.cfs_quota_us, memory.limit_in_bytes, memory.max_usage_in_bytes, cpuacct.usage), written
@@ -18,6 +19,7 @@ cpu=0.5
 mem_mb=768
 runs=1
 milestones=()
+java_opts=()
 while [ $# -gt 0 ]; do
   case "$1" in
     --jar) jar="$2"; shift 2 ;;
@@ -25,7 +27,8 @@ while [ $# -gt 0 ]; do
     --mem-mb) mem_mb="$2"; shift 2 ;;
     --runs) runs="$2"; shift 2 ;;
     --milestone) milestones+=(--milestone "$2"); shift 2 ;;
-    -h|--help) sed -n '2,13p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    --java-opt) java_opts+=("$2"); shift 2 ;;
+    -h|--help) sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "cgroup-check: unknown option $1 (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -89,13 +92,13 @@ cp "$here"/src/test/resources/submissions/bugs3/*.java "$work/bugs3/"
 
 # The grader cache is built once outside the cgroup (on Gradescope setup.sh does it into the image).
 echo "cgroup-check: building the grader cache (not measured) ..." >&2
-(cd "$here" && java -jar "$jar" grade "$work/reference" --out "$work/warm" --root "$here" \
+(cd "$here" && java "${java_opts[@]}" -jar "$jar" grade "$work/reference" --out "$work/warm" --root "$here" \
   --cache "$work/cache" --quiet "${milestones[@]}" >/dev/null 2>&1) || true
 chmod 755 "$work/cache" 2>/dev/null || true
 
 echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $(nproc) CPU(s), cgroup v$version"
 echo "java: $(java -XshowSettings:properties -version 2>&1 | awk -F'= ' '/java.vm.name|java.runtime.version/ {printf "%s ", $2}')"
-echo "jar: $jar"
+echo "jar: $jar${java_opts:+ (grader JVM options: ${java_opts[*]})}"
 echo "limits: $cpu CPU, $mem_mb MB; date: $(date -u '+%Y-%m-%d %H:%M UTC')"
 printf '%-10s %4s %9s %9s %10s %-14s %s\n' submission run wall_s cpu_s peak_mb score load_average
 for i in $(seq 1 "$runs"); do
@@ -112,8 +115,8 @@ for i in $(seq 1 "$runs"); do
     t0=$(date +%s.%N)
     # The subshell joins the cgroup(s) first, then becomes the grader: every child JVM is inside too.
     score=$(RAYLAB_HERE="$here" RAYLAB_JAR="$jar" RAYLAB_SUB="$work/$sub" RAYLAB_OUT="$work/out-$sub-$i" \
-        RAYLAB_CACHE="$work/cache" RAYLAB_MS="${milestones[*]:-}" \
-        bash -c 'for g in "$@"; do echo $$ > "$g/cgroup.procs"; done; cd "$RAYLAB_HERE" && exec java -jar "$RAYLAB_JAR" \
+        RAYLAB_CACHE="$work/cache" RAYLAB_MS="${milestones[*]:-}" RAYLAB_JOPTS="${java_opts[*]:-}" \
+        bash -c 'for g in "$@"; do echo $$ > "$g/cgroup.procs"; done; cd "$RAYLAB_HERE" && exec java $RAYLAB_JOPTS -jar "$RAYLAB_JAR" \
         grade "$RAYLAB_SUB" --out "$RAYLAB_OUT" --root "$RAYLAB_HERE" --cache "$RAYLAB_CACHE" --quiet $RAYLAB_MS' \
         _ "${groups[@]}" 2>/dev/null | tail -1) || true
     t1=$(date +%s.%N)

@@ -3,6 +3,8 @@
 # reference), graded with target/raylab.jar as GraderTest grades them (small limits).
 # Usage: grader/scores.sh OUTDIR [NAME...]   -> OUTDIR/NAME.tsv (milestone, test, score, max) and
 # OUTDIR/NAME.results.json; the total on standard output. Compare two runs with diff.
+# Environment: RAYLAB_GRADE_OPTS (grade options, e.g. "--seed 5" to grade the same variants),
+# RAYLAB_JAVA_OPTS (grader JVM options, e.g. -Draylab.grade.boundary=false for the older path).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 out="$(mkdir -p "$1" && cd "$1" && pwd)"; shift
@@ -16,7 +18,7 @@ for n in "${names[@]}"; do
   java -cp "$root/target/raylab.jar" "$root/src/bench/boundary/MakeSubmission.java" "$root" "$n" "$work/$n"
   mkdir -p "$work/$n-out"
   start=$(date +%s.%N)
-  java -jar "$root/target/raylab.jar" grade "$work/$n" --out "$work/$n-out" --root "$root" --quiet \
+  java ${RAYLAB_JAVA_OPTS:-} -jar "$root/target/raylab.jar" grade "$work/$n" --out "$work/$n-out" --root "$root" --quiet \
     --test-timeout 2 --milestone-timeout 40 --scene-timeout 25 --heap 256 --sandbox-user "$user" \
     ${RAYLAB_GRADE_OPTS:-} >/dev/null 2>&1 || true
   end=$(date +%s.%N)

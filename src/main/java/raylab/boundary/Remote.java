@@ -47,6 +47,21 @@ public final class Remote {
         process().ensureStarted();
     }
 
+    /**
+     * Ends this JVM's student process (if one was started) and describes the next one by
+     * {@code configFile}, started now: the grader runs its visible and then its hidden tests in
+     * one JVM, each group with a student process of its own, so nothing the hidden tests pass to
+     * student code can reach a visible test's output.
+     */
+    public static synchronized void switchTo(Path configFile) {
+        if (process != null) {
+            process.close();
+            process = null;
+        }
+        System.setProperty("raylab.boundary", configFile.toString());
+        warmUp();
+    }
+
     /** Uses {@code p} as this JVM's student process (tests, benchmarks). */
     public static synchronized void use(StudentProcess p) {
         process = p;

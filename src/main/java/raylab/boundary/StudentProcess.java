@@ -612,7 +612,15 @@ public final class StudentProcess implements AutoCloseable {
         return index >= 0 ? new BatchFailure(index, cls, msg, frames) : new StudentException(cls, msg, frames, "");
     }
 
+    /** Callbacks answered one at a time (those not answered in advance), for measurements. */
+    public synchronized long liveCallbacks() {
+        return liveCallbacks;
+    }
+
+    private long liveCallbacks;
+
     private void callback(Wire.Frame f) throws IOException {
+        liveCallbacks++;
         Wire.In in = f.in();
         int id = in.readInt();
         byte op = in.readByte();

@@ -165,14 +165,15 @@ public final class TrustedRender {
                 long c0 = ProcessHandle.current().info().totalCpuDuration().map(java.time.Duration::toNanos).orElse(0L);
                 long w0 = System.nanoTime();
                 long s0 = spec == null ? 0 : StudentProcess.cpuNanosOf(Remote.process());
+                long l0 = spec == null ? 0 : Remote.process().liveCallbacks();
                 Image image = render(scene, args[i + 2], spec);
                 PngFiles.write(image.toBufferedImage(), out);
                 if (Boolean.getBoolean("raylab.boundary.raw")) {
                     writeRaw(image, Path.of(out + ".raw")); // every channel's bits, for tests
                 }
                 if (spec != null && System.getenv("RAYLAB_GRADE_TIMES") != null) {
-                    System.err.printf("%s: %s; wall %.2f s, grader process CPU %.2f s, student CPU %.2f s%n", args[i + 2],
-                            spec.counts(), (System.nanoTime() - w0) / 1e9,
+                    System.err.printf("%s: %s, live callbacks %d; wall %.2f s, grader process CPU %.2f s, student CPU %.2f s%n",
+                            args[i + 2], spec.counts(), Remote.process().liveCallbacks() - l0, (System.nanoTime() - w0) / 1e9,
                             (ProcessHandle.current().info().totalCpuDuration().map(java.time.Duration::toNanos).orElse(0L) - c0) / 1e9,
                             (StudentProcess.cpuNanosOf(Remote.process()) - s0) / 1e9);
                 }

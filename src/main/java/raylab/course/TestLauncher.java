@@ -75,6 +75,16 @@ public final class TestLauncher {
      * Runs the selected tests. {@code expected} (from {@link #discover}) are the tests that must
      * report: any of them without a report is returned as MISSING, TIMED_OUT or CRASHED.
      */
+    private static final String THEN_BOUNDARY = "--then-boundary=";
+
+    /**
+     * An entry of {@code classes} for {@link #run}: the classes after it run after those before
+     * it, with a new student process described by {@code config} ({@code TestMain --then-boundary}).
+     */
+    public static String thenBoundary(Path config) {
+        return THEN_BOUNDARY + config;
+    }
+
     public static Outcome run(List<Path> classPath, Path testClasses, List<String> tags, List<String> classes,
             Limits limits, Path workDir, List<TestResult> expected) throws IOException {
         return launch(classPath, testClasses, tags, classes, limits, workDir, false, expected, List.of(), List.of());
@@ -122,8 +132,13 @@ public final class TestLauncher {
             cmd.add(t);
         }
         for (String c : classes) {
-            cmd.add("--class");
-            cmd.add(c);
+            if (c.startsWith(THEN_BOUNDARY)) {
+                cmd.add("--then-boundary");
+                cmd.add(c.substring(THEN_BOUNDARY.length()));
+            } else {
+                cmd.add("--class");
+                cmd.add(c);
+            }
         }
         if (list) {
             cmd.add("--list");

@@ -43,7 +43,9 @@ import com.fasterxml.jackson.databind.ObjectMapper;
  * tests print goes to a capped buffer attached to their result.
  * Arguments: {@code --test-classes DIR} (scanned for tests), {@code --tag T} (repeatable),
  * {@code --class NAME} (repeatable), {@code --timeout S} (per test), {@code --output-cap BYTES},
- * {@code --list} (report the discovered tests without running them).
+ * {@code --list} (report the discovered tests without running them), {@code --then-boundary FILE}
+ * (in the grader's process: the classes named after it run after the ones before it, each group
+ * to its end, with a new student process described by FILE; see {@code raylab.boundary.Remote}).
  */
 public final class TestMain {
     private TestMain() {
@@ -71,6 +73,9 @@ public final class TestMain {
         Path testClasses = null;
         List<String> tags = new ArrayList<>();
         List<String> classes = new ArrayList<>();
+        // Groups of classes run one after the other; a group after the first has its own student process.
+        List<List<String>> groups = new ArrayList<>(List.of(classes));
+        List<String> groupBoundary = new ArrayList<>(java.util.Collections.singletonList(null));
         int timeout = 10;
         int cap = 16 * 1024;
         boolean list = false;
@@ -78,7 +83,11 @@ public final class TestMain {
             switch (args[i]) {
                 case "--test-classes" -> testClasses = Path.of(args[++i]);
                 case "--tag" -> tags.add(args[++i]);
-                case "--class" -> classes.add(args[++i]);
+                case "--class" -> groups.get(groups.size() - 1).add(args[++i]);
+                case "--then-boundary" -> {
+                    groups.add(new ArrayList<>());
+                    groupBoundary.add(args[++i]);
+                }
                 case "--timeout" -> timeout = Integer.parseInt(args[++i]);
                 case "--output-cap" -> cap = Integer.parseInt(args[++i]);
                 case "--list" -> list = true;
@@ -98,25 +107,10 @@ public final class TestMain {
         System.setOut(capture);
         System.setErr(capture);
 
-        LauncherDiscoveryRequestBuilder request = LauncherDiscoveryRequestBuilder.request()
-                .configurationParameter("junit.jupiter.execution.timeout.default", timeout + " s")
-                .configurationParameter("junit.jupiter.execution.timeout.mode", "enabled")
-                .configurationParameter("junit.jupiter.execution.timeout.thread.mode.default", "SEPARATE_THREAD")
-                .configurationParameter("junit.jupiter.extensions.autodetection.enabled", "false");
-        if (!classes.isEmpty()) {
-            for (String c : classes) {
-                request.selectors(DiscoverySelectors.selectClass(c));
-            }
-        } else if (testClasses != null) {
-            request.selectors(DiscoverySelectors.selectClasspathRoots(Set.of(testClasses)));
-        }
-        if (!tags.isEmpty()) {
-            request.filters(TagFilter.includeTags(tags));
-        }
-        LauncherDiscoveryRequest req = request.build();
         Launcher launcher = LauncherFactory.create();
         ObjectMapper json = new ObjectMapper();
         if (list) {
+            LauncherDiscoveryRequest req = request(classes, testClasses, tags, timeout);
             TestPlan plan = launcher.discover(req);
             for (TestIdentifier root : plan.getRoots()) {
                 for (TestIdentifier t : plan.getDescendants(root)) {
@@ -130,7 +124,7 @@ public final class TestMain {
             System.exit(0);
         }
         Map<String, Long> started = new ConcurrentHashMap<>();
-        launcher.execute(req, new TestExecutionListener() {
+        TestExecutionListener listener = new TestExecutionListener() {
             @Override
             public void executionStarted(TestIdentifier t) {
                 if (t.isTest()) {
@@ -174,10 +168,41 @@ public final class TestMain {
                     channel.send("ERROR " + e.getClass().getSimpleName());
                 }
             }
-        });
+        };
+        for (int g = 0; g < groups.size(); g++) {
+            if (groups.get(g).isEmpty() && (g > 0 || groups.size() > 1)) {
+                continue; // an empty group runs nothing (only a lone empty list means: scan --test-classes)
+            }
+            if (groupBoundary.get(g) != null) {
+                // The student process of the groups before ends here: nothing it saw reaches this group.
+                Class.forName("raylab.boundary.Remote").getMethod("switchTo", Path.class)
+                        .invoke(null, Path.of(groupBoundary.get(g)));
+            }
+            launcher.execute(request(groups.get(g), testClasses, tags, timeout), listener);
+        }
         channel.send("END");
         // Stray threads started by the code under test must not keep this JVM alive.
         Runtime.getRuntime().halt(0);
+    }
+
+    private static LauncherDiscoveryRequest request(List<String> classes, Path testClasses, List<String> tags,
+            int timeout) {
+        LauncherDiscoveryRequestBuilder request = LauncherDiscoveryRequestBuilder.request()
+                .configurationParameter("junit.jupiter.execution.timeout.default", timeout + " s")
+                .configurationParameter("junit.jupiter.execution.timeout.mode", "enabled")
+                .configurationParameter("junit.jupiter.execution.timeout.thread.mode.default", "SEPARATE_THREAD")
+                .configurationParameter("junit.jupiter.extensions.autodetection.enabled", "false");
+        if (!classes.isEmpty()) {
+            for (String c : classes) {
+                request.selectors(DiscoverySelectors.selectClass(c));
+            }
+        } else if (testClasses != null) {
+            request.selectors(DiscoverySelectors.selectClasspathRoots(Set.of(testClasses)));
+        }
+        if (!tags.isEmpty()) {
+            request.filters(TagFilter.includeTags(tags));
+        }
+        return request.build();
     }
 
     /**

@@ -84,17 +84,24 @@ public final class Grader {
         }
     }
 
-    /**
-     * Whether student code runs behind the process boundary (system property
-     * {@code raylab.grade.boundary=true}; grader/README.md "The process boundary"): the tests and
-     * renders run in a trusted JVM whose stand-ins call the student process. Off by default until
-     * renders are batched (a full submission is too slow with one call per intersection).
-     */
     /** Phase times on standard error (environment variable RAYLAB_GRADE_TIMES; measurements only). */
     private static final boolean TIMES = System.getenv("RAYLAB_GRADE_TIMES") != null;
 
+    /** JVM options from an environment variable, split at spaces (measurements only: flags to compare). */
+    private static List<String> extraJvmOptions(String variable) {
+        String v = System.getenv(variable);
+        return v == null || v.isBlank() ? List.of() : List.of(v.trim().split("\\s+"));
+    }
+
+    /**
+     * Whether student code runs behind the process boundary (the default; grader/README.md "The
+     * process boundary"): the tests and renders run in trusted JVMs whose stand-ins call the
+     * student process. The system property {@code raylab.grade.boundary=false} selects the older
+     * path (student code in the test and render JVMs), kept only to compare the two: it does not
+     * keep secrets from student code.
+     */
     static boolean processBoundary() {
-        return Boolean.getBoolean("raylab.grade.boundary");
+        return !"false".equalsIgnoreCase(System.getProperty("raylab.grade.boundary", "true"));
     }
 
     private final Options options;
@@ -148,6 +155,9 @@ public final class Grader {
         });
         GraderSetup setup = GraderSetup.prepare(root, selected, options.cacheDir().toAbsolutePath(), log);
         notes.addAll(setup.notes);
+        if (TIMES) {
+            System.err.printf("setup %.1f s%n", (System.nanoTime() - t0) / 1e9);
+        }
         // Mode none: children could write the cache; it is checked against this manifest at the end.
         CacheManifest.Guard cacheGuard = sandbox.mode() == Sandbox.Mode.NONE ? CacheManifest.guard(setup.dir) : null;
         this.allAssignments = all.all();
@@ -161,11 +171,15 @@ public final class Grader {
         }
         // Variants of the graded scenes, their references rendered here by the reference solution.
         notes.add("scene variants: seed " + seed + " (grade with --seed " + seed + " to grade the same variants again)");
+        long v0 = System.nanoTime();
         for (GradedScenes.Graded g : GradedScenes.forGrading(root, selected, seed)) {
             graded.put(g.scene().scene(), g);
             if (!g.note().isEmpty()) {
                 notes.add(g.note());
             }
+        }
+        if (TIMES) {
+            System.err.printf("variants and their references %.1f s%n", (System.nanoTime() - v0) / 1e9);
         }
 
         Submission read;
@@ -293,7 +307,11 @@ public final class Grader {
         for (Assignment.StudentFile f : a.files()) {
             files.put(f.path().substring("src/main/java/".length()), sub.files().get(f.path()));
         }
+        long c0 = System.nanoTime();
         JavaBuild.Result compiled = MilestoneBuild.compileOverlay(files, mdir.resolve("src"), below, overlay);
+        if (TIMES) {
+            System.err.printf("%s compile %.1f s%n", a.id(), (System.nanoTime() - c0) / 1e9);
+        }
         // Children reach their boxes through this folder, but nothing else in it.
         Sandbox.workFolder(mdir);
         for (Path p : List.of(mdir.resolve("src"), overlay, otherRefs)) {
@@ -338,15 +356,18 @@ public final class Grader {
         boolean boundary = processBoundary();
         if (boundary) {
             long t0 = System.nanoTime();
-            runTests(a, false, visibleClasses, expected, trusted, overlay, setup, mdir, sandbox, got, notes);
+            runTests(a, visibleClasses, hiddenClasses, expected, trusted, overlay, setup, mdir, sandbox, got, notes);
+            if (TIMES) {
+                System.err.printf("%s visible and hidden %.1f s%n", a.id(), (System.nanoTime() - t0) / 1e9);
+            }
+        } else {
+            long t0 = System.nanoTime();
+            runTestsInBox(a, false, visibleClasses, expected, layers, setup, mdir, sandbox, got, notes);
             long t1 = System.nanoTime();
-            runTests(a, true, hiddenClasses, expected, trusted, overlay, setup, mdir, sandbox, got, notes);
+            runTestsInBox(a, true, hiddenClasses, expected, layers, setup, mdir, sandbox, got, notes);
             if (TIMES) {
                 System.err.printf("%s visible %.1f s hidden %.1f s%n", a.id(), (t1 - t0) / 1e9, (System.nanoTime() - t1) / 1e9);
             }
-        } else {
-            runTestsInBox(a, false, visibleClasses, expected, layers, setup, mdir, sandbox, got, notes);
-            runTestsInBox(a, true, hiddenClasses, expected, layers, setup, mdir, sandbox, got, notes);
         }
         tests.addAll(scoreTests(a, setup, plan(a), expected, got));
         // Scenes.
@@ -474,7 +495,9 @@ public final class Grader {
         cmd.addAll(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(), "-Xmx" + heapMb + "m",
                 "-Xss4m", "-XX:+UseSerialGC", "-XX:+ExitOnOutOfMemoryError", "-Djava.awt.headless=true",
                 "-XX:+DisableAttachMechanism", "-XX:-UsePerfData", "--limit-modules", TestLauncher.CHILD_MODULES,
-                "-Dfile.encoding=UTF-8", "-cp", String.join(java.io.File.pathSeparator, box.classPath()),
+                "-Dfile.encoding=UTF-8"));
+        cmd.addAll(extraJvmOptions("RAYLAB_STUDENT_JVM_OPTS"));
+        cmd.addAll(List.of("-cp", String.join(java.io.File.pathSeparator, box.classPath()),
                 "raylab.remote.StudentServer"));
         for (String c : students) {
             cmd.add("--student");
@@ -485,16 +508,19 @@ public final class Grader {
     }
 
     /**
-     * Runs some of M's test classes in the grader's process (a JVM of trusted code: tests,
-     * stand-ins, references) whose stand-ins call the student process in its box; the results go
-     * into {@code got}.
+     * Runs M's test classes in the grader's process (a JVM of trusted code: tests, stand-ins,
+     * references) whose stand-ins call a student process in its box: first the visible classes,
+     * to their end, then the hidden ones with a new student process in a new box, so that nothing
+     * hidden reaches student code before every visible result is reported. Results go into
+     * {@code got}.
      */
-    private void runTests(Assignment a, boolean hidden, List<String> classes, List<TestResult> allExpected,
-            List<Path> trusted, Path overlay, GraderSetup setup, Path mdir, Sandbox sandbox,
-            Map<String, TestResult> got, List<String> notes) throws IOException {
-        java.util.Set<String> mine = new java.util.HashSet<>(classes);
-        List<TestResult> expected = allExpected.stream().filter(e -> mine.contains(GraderSetup.outer(e.className())))
-                .toList();
+    private void runTests(Assignment a, List<String> visibleClasses, List<String> hiddenClasses,
+            List<TestResult> allExpected, List<Path> trusted, Path overlay, GraderSetup setup, Path mdir,
+            Sandbox sandbox, Map<String, TestResult> got, List<String> notes) throws IOException {
+        java.util.Set<String> visible = new java.util.HashSet<>(visibleClasses);
+        java.util.Set<String> hidden = new java.util.HashSet<>(hiddenClasses);
+        List<TestResult> expected = allExpected.stream().filter(e -> visible.contains(GraderSetup.outer(e.className()))
+                || hidden.contains(GraderSetup.outer(e.className()))).toList();
         if (expected.isEmpty()) {
             return;
         }
@@ -505,24 +531,44 @@ public final class Grader {
                 cp.add(p);
             }
         }
-        Sandbox.Box box = studentBox(a, overlay, setup, mdir, sandbox);
-        Path dir = Files.createTempDirectory(mdir, hidden ? "hidden" : "visible");
+        Path dir = Files.createTempDirectory(mdir, "tests");
+        List<Sandbox.Box> boxes = new ArrayList<>();
         try {
-            Path config = dir.resolve("student.properties");
-            raylab.boundary.Remote.writeConfig(config, studentConfig(a, box, overlay,
-                    options.limits().perTestSeconds() * 1000L, options.limits().heapMegabytes()));
-            TestLauncher.Outcome o = TestLauncher.run(cp, setup.tests, List.of(), classes, options.limits(), dir,
-                    expected, List.of(), List.of("-Draylab.boundary=" + config));
+            List<String> classes = new ArrayList<>();
+            for (int g = 0; g < 2; g++) {
+                Sandbox.Box box = studentBox(a, overlay, setup, mdir, sandbox);
+                boxes.add(box);
+                Path config = dir.resolve(g == 0 ? "visible.properties" : "hidden.properties");
+                raylab.boundary.Remote.writeConfig(config, studentConfig(a, box, overlay,
+                        options.limits().perTestSeconds() * 1000L, options.limits().heapMegabytes()));
+                if (g == 0) {
+                    classes.addAll(visibleClasses);
+                } else {
+                    classes.add(TestLauncher.thenBoundary(config));
+                    classes.addAll(hiddenClasses);
+                }
+            }
+            // One JVM for both groups, so the milestone's time limit covers both.
+            TestLauncher.Limits l = options.limits();
+            TestLauncher.Limits both = new TestLauncher.Limits(l.heapMegabytes(), l.wallClock().multipliedBy(2),
+                    l.perTestSeconds(), l.outputCapBytes());
+            TestLauncher.Outcome o = TestLauncher.run(cp, setup.tests, List.of(), classes, both, dir, expected,
+                    List.of(), List.of("-Draylab.boundary=" + dir.resolve("visible.properties")));
             for (TestResult r : o.results()) {
                 got.put(r.id(), r);
             }
             if (!o.finished() && !o.problem().isEmpty()) {
+                boolean visibleDone = expected.stream().filter(e -> visible.contains(GraderSetup.outer(e.className())))
+                        .map(e -> got.get(e.id())).allMatch(r -> r != null && r.status() != TestResult.Status.MISSING
+                                && !r.message().startsWith("this test was running when"));
                 // What went wrong in the hidden run is named on the hidden tests only (their visibility).
-                notes.add(hidden ? "the hidden tests' run did not finish (see the hidden tests)"
+                notes.add(visibleDone ? "the hidden tests' run did not finish (see the hidden tests)"
                         : "the test run did not finish: " + o.problem());
             }
         } finally {
-            sandbox.finish(box, null);
+            for (Sandbox.Box box : boxes) {
+                sandbox.finish(box, null);
+            }
             GraderSetup.deleteTree(dir);
         }
     }
@@ -825,7 +871,9 @@ public final class Grader {
                 "-XX:+DisableAttachMechanism", "-XX:-UsePerfData", "--limit-modules", TestLauncher.CHILD_MODULES,
                 // Quick to start: C1 only (a render of seconds pays C2's compile time back rarely).
                 "-XX:+UseSerialGC", "-XX:TieredStopAtLevel=1",
-                "-Draylab.boundary=" + config,
+                "-Draylab.boundary=" + config));
+        cmd.addAll(extraJvmOptions("RAYLAB_RENDER_JVM_OPTS"));
+        cmd.addAll(List.of(
                 // The milestone's reference predicts the student's answers, so that calls go in batches.
                 "-Draylab.boundary.references=" + setup.references.get(a.id()).toAbsolutePath(),
                 "-cp", String.join(java.io.File.pathSeparator,

@@ -138,4 +138,61 @@ class TestLauncherTest {
         assertEquals(TestResult.Status.FAILED, o.results().get(0).status());
         assertTrue(o.results().get(0).message().contains("really failed"), o.results().get(0).message());
     }
+
+    /**
+     * The grader's test JVM: the classes after {@code --then-boundary} run after the others have
+     * ended, with the student process the second file describes (a new process, not the first).
+     */
+    @Test
+    void thenBoundaryRunsTheSecondGroupAfterTheFirstWithANewStudentProcess() throws Exception {
+        String probe = """
+                    static String probe() {
+                        raylab.boundary.StudentProcess p = raylab.boundary.Remote.process();
+                        return "config " + java.nio.file.Path.of(System.getProperty("raylab.boundary")).getFileName()
+                                + " process " + System.identityHashCode(p) + " starts " + p.starts();
+                    }
+                """;
+        compile("FirstTest", """
+                package demo;
+                import org.junit.jupiter.api.*;
+                class FirstTest {
+                    static volatile boolean ended;
+                %s
+                    @Test void first() throws Exception { System.out.println(probe()); Thread.sleep(200); ended = true; }
+                }
+                """.formatted(probe));
+        Path classes = compile("SecondTest", """
+                package demo;
+                import org.junit.jupiter.api.*;
+                class SecondTest {
+                %s
+                    @Test void second() {
+                        System.out.println(probe());
+                        Assertions.assertTrue(FirstTest.ended, "the first group ended before the second began");
+                    }
+                }
+                """.formatted(probe));
+        Path first = dir.resolve("first.properties");
+        Path second = dir.resolve("second.properties");
+        for (Path f : List.of(first, second)) {
+            raylab.boundary.Remote.writeConfig(f, new raylab.boundary.StudentProcess.Config(
+                    raylab.boundary.StudentProcess.javaCommand(JavaBuild.ownClassPath(), 64, List.of()), null,
+                    java.util.Set.of(), 10_000, 0));
+        }
+        List<TestResult> expected = TestLauncher.discover(classPath(classes), classes, List.of(),
+                List.of("demo.FirstTest", "demo.SecondTest"), dir);
+        assertEquals(2, expected.size(), "discovered: " + expected);
+        TestLauncher.Outcome o = TestLauncher.run(classPath(classes), classes, List.of(),
+                List.of("demo.FirstTest", TestLauncher.thenBoundary(second), "demo.SecondTest"),
+                TestLauncher.Limits.DEFAULT, dir, expected, List.of(), List.of("-Draylab.boundary=" + first));
+        assertTrue(o.finished(), "run should finish: " + o.problem());
+        Map<String, TestResult> byMethod = o.results().stream().collect(Collectors.toMap(TestResult::method, r -> r));
+        assertEquals(TestResult.Status.PASSED, byMethod.get("first").status(), byMethod.get("first").toString());
+        assertEquals(TestResult.Status.PASSED, byMethod.get("second").status(), byMethod.get("second").toString());
+        String a = byMethod.get("first").output().trim();
+        String b = byMethod.get("second").output().trim();
+        assertTrue(a.startsWith("config first.properties process ") && a.endsWith(" starts 1"), a);
+        assertTrue(b.startsWith("config second.properties process ") && b.endsWith(" starts 1"), b);
+        assertFalse(a.split(" ")[3].equals(b.split(" ")[3]), "a new student process: " + a + " / " + b);
+    }
 }
