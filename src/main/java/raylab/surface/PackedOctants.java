@@ -113,7 +113,7 @@ final class PackedOctants {
             int k = ref << 5;
             int order = Float.floatToRawIntBits(node[k + 28]);
             int count = Float.floatToRawIntBits(node[k + 30]);
-            int top0 = top;
+            // The child entered last (the nearest), or 0 for none: no child is the root, node 0.
             int next = 0;
             if (count > 3) {
                 int b = k + (order >>> 6 & 3);
@@ -163,7 +163,7 @@ final class PackedOctants {
                     next = r;
                 }
             }
-            if (top != top0) {
+            if (next != 0) {
                 // The nearest child entered: down to it at once (its copy on the stack is dropped),
                 // so that the next node's address does not wait for the stack.
                 top--;
@@ -234,7 +234,7 @@ final class PackedOctants {
             int k = ref << 5;
             int order = Float.floatToRawIntBits(node[k + 28]) >>> 8;
             int count = Float.floatToRawIntBits(node[k + 30]);
-            int top0 = top;
+            // The child entered last (the nearest), or 0 for none: no child is the root, node 0.
             int next = 0;
             if (count > 3) {
                 int b = k + (order >>> 6 & 3);
@@ -284,7 +284,7 @@ final class PackedOctants {
                     next = r;
                 }
             }
-            if (top != top0) {
+            if (next != 0) {
                 // The nearest child entered: down to it at once (its copy on the stack is dropped),
                 // so that the next node's address does not wait for the stack.
                 top--;
@@ -355,7 +355,7 @@ final class PackedOctants {
             int k = ref << 5;
             int order = Float.floatToRawIntBits(node[k + 28]) >>> 16;
             int count = Float.floatToRawIntBits(node[k + 30]);
-            int top0 = top;
+            // The child entered last (the nearest), or 0 for none: no child is the root, node 0.
             int next = 0;
             if (count > 3) {
                 int b = k + (order >>> 6 & 3);
@@ -405,7 +405,7 @@ final class PackedOctants {
                     next = r;
                 }
             }
-            if (top != top0) {
+            if (next != 0) {
                 // The nearest child entered: down to it at once (its copy on the stack is dropped),
                 // so that the next node's address does not wait for the stack.
                 top--;
@@ -476,7 +476,7 @@ final class PackedOctants {
             int k = ref << 5;
             int order = Float.floatToRawIntBits(node[k + 28]) >>> 24;
             int count = Float.floatToRawIntBits(node[k + 30]);
-            int top0 = top;
+            // The child entered last (the nearest), or 0 for none: no child is the root, node 0.
             int next = 0;
             if (count > 3) {
                 int b = k + (order >>> 6 & 3);
@@ -526,7 +526,7 @@ final class PackedOctants {
                     next = r;
                 }
             }
-            if (top != top0) {
+            if (next != 0) {
                 // The nearest child entered: down to it at once (its copy on the stack is dropped),
                 // so that the next node's address does not wait for the stack.
                 top--;
@@ -597,7 +597,7 @@ final class PackedOctants {
             int k = ref << 5;
             int order = Float.floatToRawIntBits(node[k + 29]);
             int count = Float.floatToRawIntBits(node[k + 30]);
-            int top0 = top;
+            // The child entered last (the nearest), or 0 for none: no child is the root, node 0.
             int next = 0;
             if (count > 3) {
                 int b = k + (order >>> 6 & 3);
@@ -647,7 +647,7 @@ final class PackedOctants {
                     next = r;
                 }
             }
-            if (top != top0) {
+            if (next != 0) {
                 // The nearest child entered: down to it at once (its copy on the stack is dropped),
                 // so that the next node's address does not wait for the stack.
                 top--;
@@ -718,7 +718,7 @@ final class PackedOctants {
             int k = ref << 5;
             int order = Float.floatToRawIntBits(node[k + 29]) >>> 8;
             int count = Float.floatToRawIntBits(node[k + 30]);
-            int top0 = top;
+            // The child entered last (the nearest), or 0 for none: no child is the root, node 0.
             int next = 0;
             if (count > 3) {
                 int b = k + (order >>> 6 & 3);
@@ -768,7 +768,7 @@ final class PackedOctants {
                     next = r;
                 }
             }
-            if (top != top0) {
+            if (next != 0) {
                 // The nearest child entered: down to it at once (its copy on the stack is dropped),
                 // so that the next node's address does not wait for the stack.
                 top--;
@@ -839,7 +839,7 @@ final class PackedOctants {
             int k = ref << 5;
             int order = Float.floatToRawIntBits(node[k + 29]) >>> 16;
             int count = Float.floatToRawIntBits(node[k + 30]);
-            int top0 = top;
+            // The child entered last (the nearest), or 0 for none: no child is the root, node 0.
             int next = 0;
             if (count > 3) {
                 int b = k + (order >>> 6 & 3);
@@ -889,7 +889,7 @@ final class PackedOctants {
                     next = r;
                 }
             }
-            if (top != top0) {
+            if (next != 0) {
                 // The nearest child entered: down to it at once (its copy on the stack is dropped),
                 // so that the next node's address does not wait for the stack.
                 top--;
@@ -960,7 +960,7 @@ final class PackedOctants {
             int k = ref << 5;
             int order = Float.floatToRawIntBits(node[k + 29]) >>> 24;
             int count = Float.floatToRawIntBits(node[k + 30]);
-            int top0 = top;
+            // The child entered last (the nearest), or 0 for none: no child is the root, node 0.
             int next = 0;
             if (count > 3) {
                 int b = k + (order >>> 6 & 3);
@@ -1010,7 +1010,7 @@ final class PackedOctants {
                     next = r;
                 }
             }
-            if (top != top0) {
+            if (next != 0) {
                 // The nearest child entered: down to it at once (its copy on the stack is dropped),
                 // so that the next node's address does not wait for the stack.
                 top--;

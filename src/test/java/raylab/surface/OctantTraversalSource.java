@@ -138,9 +138,9 @@ public final class OctantTraversalSource {
                             int k = ref << 5;
                             int order = Float.floatToRawIntBits(node[k + %5$d])%6$s;
                             int count = Float.floatToRawIntBits(node[k + 30]);
-                            int top0 = top;
+                            // The child entered last (the nearest), or 0 for none: no child is the root, node 0.
                             int next = 0;
-                %7$s            if (top != top0) {
+                %7$s            if (next != 0) {
                                 // The nearest child entered: down to it at once (its copy on the stack is dropped),
                                 // so that the next node's address does not wait for the stack.
                                 top--;
