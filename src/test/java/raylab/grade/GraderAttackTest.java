@@ -63,7 +63,9 @@ class GraderAttackTest {
     /** Grades the attack submission (milestone sphere) in the given mode, with the given sandbox user ("" for none). */
     private Run attack(String mode, String user) throws Exception {
         long tag = 31_000 + new SplittableRandom(System.nanoTime()).nextInt(9_000);
-        Path cache = root.resolve("target/grader-cache");
+        // Mode none: the attack writes into every cache folder it can reach (it is not isolated
+        // there), so a cache of its own; no other test's cache is poisoned by it.
+        Path cache = root.resolve(mode.equals("none") ? "target/grader-cache-attack-none" : "target/grader-cache");
         Path out = Files.createDirectories(dir.resolve("out-" + mode));
         Path sub = Files.createDirectories(dir.resolve("sub-" + mode));
         for (Assignment a : assignments.all()) {
