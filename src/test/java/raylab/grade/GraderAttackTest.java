@@ -98,7 +98,7 @@ class GraderAttackTest {
             // what these tests check.
             String[] base = {"grade", sub.toString(), "--out", out.toString(), "--root", root.toString(), "--quiet",
                 "--test-timeout", "5", "--milestone-timeout", "60", "--scene-timeout", "5", "--heap", "256",
-                "--milestone", "sphere", "--sandbox", mode, "--sandbox-user", user,
+                "--milestone", "sphere", "--sandbox", mode, "--sandbox-user", user, "--cache", cache.toString(),
                 "--prairielearn", out.resolveSibling(out.getFileName() + "-pl.json").toString()};
             String[] args = base;
             ByteArrayOutputStream err = new ByteArrayOutputStream();
