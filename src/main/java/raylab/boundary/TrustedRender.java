@@ -39,6 +39,17 @@ public final class TrustedRender {
      * same pixels, bit for bit, as one call at a time: {@link Speculation}).
      */
     public static Image render(Scene scene, String name, Speculation spec) {
+        return render(scene, name, spec, null, new int[1]);
+    }
+
+    /**
+     * As {@link #render(Scene, String, Speculation)}, also setting in {@code reference} (if not
+     * null) each pixel traced with predictions only: the first round of a band uses no answer of
+     * the student's, so that trace is the reference solution's (the milestone's reference and the
+     * trusted framework). {@code set[0]} counts the pixels of {@code reference} set: all of them
+     * unless a prediction failed (then the reference must be rendered apart).
+     */
+    public static Image render(Scene scene, String name, Speculation spec, Image reference, int[] set) {
         Renderer r = new Renderer(scene, new RenderPlan(scene), Mode.FULL);
         Shader shader = new Shader(scene, r.root(), r.plan(), Mode.FULL);
         Image image = new Image(scene.width, scene.height);
@@ -46,6 +57,7 @@ public final class TrustedRender {
         RenderStats stats = new RenderStats();
         if (spec == null) {
             for (int y = 0; y < scene.height; y++) {
+                checkTime();
                 for (int x = 0; x < scene.width; x++) {
                     image.set(x, y, pixel(r, shader, rec, stats, x, y, name));
                 }
@@ -55,12 +67,21 @@ public final class TrustedRender {
         Remote.speculate(spec);
         try {
             for (int y0 = 0; y0 < scene.height; y0 += BAND_ROWS) {
-                band(r, shader, rec, stats, image, y0, Math.min(scene.height, y0 + BAND_ROWS), name, spec);
+                checkTime();
+                set[0] += band(r, shader, rec, stats, image, y0, Math.min(scene.height, y0 + BAND_ROWS), name, spec,
+                        reference);
             }
         } finally {
             Remote.speculate(null);
         }
         return image;
+    }
+
+
+    private static void checkTime() {
+        if (timed && System.nanoTime() - deadline > 0) {
+            throw new OutOfTime();
+        }
     }
 
     private static Color pixel(Renderer r, Shader shader, IntersectionRecord rec, RenderStats stats, int x, int y,
@@ -76,10 +97,11 @@ public final class TrustedRender {
      * Rows y0 to y1 in rounds: each open pixel traced with the answers known and predictions for
      * the rest, then the predictions checked against the student's answers in one frame, until
      * every pixel's trace rests on the student's answers only. Failures are thrown in the order
-     * of the pixels, as a render one call at a time would meet them.
+     * of the pixels, as a render one call at a time would meet them. The first round's colours
+     * go to {@code reference} (if not null); returns how many pixels of it were set.
      */
-    private static void band(Renderer r, Shader shader, IntersectionRecord rec, RenderStats stats, Image image,
-            int y0, int y1, String name, Speculation spec) {
+    private static int band(Renderer r, Shader shader, IntersectionRecord rec, RenderStats stats, Image image,
+            int y0, int y1, String name, Speculation spec, Image reference) {
         int w = image.width;
         int n = w * (y1 - y0);
         Color[] colors = new Color[n];
@@ -88,6 +110,7 @@ public final class TrustedRender {
         boolean[] oneAtATime = new boolean[n];
         Speculation.Pixel[] traces = new Speculation.Pixel[n];
         int open = n;
+        int set = 0;
         for (int round = 0; open > 0 && round < Speculation.MAX_ROUNDS; round++) {
             for (int i = 0; i < n; i++) {
                 if (done[i] || oneAtATime[i]) {
@@ -105,6 +128,14 @@ public final class TrustedRender {
                     failures[i] = e;
                 } finally {
                     spec.end();
+                }
+            }
+            if (round == 0 && reference != null) {
+                for (int i = 0; i < n; i++) {
+                    if (!oneAtATime[i] && failures[i] == null && colors[i] != null) {
+                        reference.set(i % w, y0 + i / w, colors[i]);
+                        set++;
+                    }
                 }
             }
             spec.send();
@@ -140,6 +171,80 @@ public final class TrustedRender {
             image.set(x, y, colors[i]);
         }
         spec.clear();
+        return set;
+    }
+
+    /** Thrown through a render when the renders' time is up ({@link #renderAll}'s deadline). */
+    static final class OutOfTime extends RuntimeException {
+        private static final long serialVersionUID = 1L;
+
+        OutOfTime() {
+            super("out of time", null, false, false);
+        }
+    }
+
+    /** The deadline of this JVM's renders ({@link System#nanoTime}), if {@link #timed}; checked between bands. */
+    private static long deadline;
+    private static boolean timed;
+
+    /**
+     * Renders the scenes of {@code args} (triples SCENE.json OUT.png NAME) one after the other with
+     * this JVM's student process, batched by the milestone's reference named in the system
+     * property {@code raylab.boundary.references} if it is set. A scene that fails leaves
+     * {@code OUT.png.err} (its first line says why); once {@code deadlineNanos}
+     * ({@link System#nanoTime}) has passed, the scene being rendered and those after it leave
+     * {@code OUT.png.timeout} instead. A batched render also leaves the reference solution's
+     * image, {@code OUT.png.reference.png}, when its first rounds traced every pixel ({@link Long#MAX_VALUE}: no deadline). Timings go to {@code times} when RAYLAB_GRADE_TIMES is set.
+     */
+    public static void renderAll(java.util.List<String> args, long deadlineNanos, java.io.PrintStream times)
+            throws java.io.IOException {
+        deadline = deadlineNanos;
+        timed = deadlineNanos != Long.MAX_VALUE;
+        for (int i = 0; i + 2 < args.size(); i += 3) {
+            Path out = Path.of(args.get(i + 1));
+            String err = null;
+            try {
+                checkTime();
+                Scene scene = SceneLoader.load(Path.of(args.get(i)));
+                String refs = System.getProperty("raylab.boundary.references");
+                Speculation spec = refs == null || refs.isEmpty() ? null
+                        : new Speculation(Remote.process(), Path.of(refs));
+                long c0 = ProcessHandle.current().info().totalCpuDuration().map(java.time.Duration::toNanos).orElse(0L);
+                long w0 = System.nanoTime();
+                long s0 = spec == null ? 0 : StudentProcess.cpuNanosOf(Remote.process());
+                long l0 = spec == null ? 0 : Remote.process().liveCallbacks();
+                Image reference = spec == null ? null : new Image(scene.width, scene.height);
+                int[] set = new int[1];
+                Image image = render(scene, args.get(i + 2), spec, reference, set);
+                PngFiles.write(image.toBufferedImage(), out);
+                if (reference != null && set[0] == scene.width * scene.height) {
+                    PngFiles.write(reference.toBufferedImage(), Path.of(out + ".reference.png"));
+                }
+                if (Boolean.getBoolean("raylab.boundary.raw")) {
+                    writeRaw(image, Path.of(out + ".raw")); // every channel's bits, for tests
+                }
+                if (spec != null && System.getenv("RAYLAB_GRADE_TIMES") != null) {
+                    times.printf("%s: %s, live callbacks %d; wall %.2f s, grader process CPU %.2f s, student CPU %.2f s%n",
+                            args.get(i + 2), spec.counts(), Remote.process().liveCallbacks() - l0,
+                            (System.nanoTime() - w0) / 1e9,
+                            (ProcessHandle.current().info().totalCpuDuration().map(java.time.Duration::toNanos).orElse(0L) - c0) / 1e9,
+                            (StudentProcess.cpuNanosOf(Remote.process()) - s0) / 1e9);
+                }
+            } catch (OutOfTime e) {
+                Files.deleteIfExists(out);
+                Files.writeString(Path.of(out + ".timeout"), "", StandardCharsets.UTF_8);
+                continue;
+            } catch (StudentException | StudentTimeout e) {
+                err = e.getMessage();
+            } catch (Throwable t) {
+                err = t.toString();
+            }
+            if (err != null) {
+                Files.deleteIfExists(out);
+                Files.writeString(Path.of(out + ".err"), err.length() > 2000 ? err.substring(0, 2000) : err,
+                        StandardCharsets.UTF_8);
+            }
+        }
     }
 
     private static void writeRaw(Image image, Path file) throws java.io.IOException {
@@ -154,39 +259,9 @@ public final class TrustedRender {
     }
 
     public static void main(String[] args) throws Exception {
-        for (int i = 0; i + 2 < args.length; i += 3) {
-            Path out = Path.of(args[i + 1]);
-            String err = null;
-            try {
-                Scene scene = SceneLoader.load(Path.of(args[i]));
-                String refs = System.getProperty("raylab.boundary.references");
-                Speculation spec = refs == null || refs.isEmpty() ? null
-                        : new Speculation(Remote.process(), Path.of(refs));
-                long c0 = ProcessHandle.current().info().totalCpuDuration().map(java.time.Duration::toNanos).orElse(0L);
-                long w0 = System.nanoTime();
-                long s0 = spec == null ? 0 : StudentProcess.cpuNanosOf(Remote.process());
-                long l0 = spec == null ? 0 : Remote.process().liveCallbacks();
-                Image image = render(scene, args[i + 2], spec);
-                PngFiles.write(image.toBufferedImage(), out);
-                if (Boolean.getBoolean("raylab.boundary.raw")) {
-                    writeRaw(image, Path.of(out + ".raw")); // every channel's bits, for tests
-                }
-                if (spec != null && System.getenv("RAYLAB_GRADE_TIMES") != null) {
-                    System.err.printf("%s: %s, live callbacks %d; wall %.2f s, grader process CPU %.2f s, student CPU %.2f s%n",
-                            args[i + 2], spec.counts(), Remote.process().liveCallbacks() - l0, (System.nanoTime() - w0) / 1e9,
-                            (ProcessHandle.current().info().totalCpuDuration().map(java.time.Duration::toNanos).orElse(0L) - c0) / 1e9,
-                            (StudentProcess.cpuNanosOf(Remote.process()) - s0) / 1e9);
-                }
-            } catch (StudentException | StudentTimeout e) {
-                err = e.getMessage();
-            } catch (Throwable t) {
-                err = t.toString();
-            }
-            if (err != null) {
-                Files.deleteIfExists(out);
-                Files.writeString(Path.of(out + ".err"), err.length() > 2000 ? err.substring(0, 2000) : err,
-                        StandardCharsets.UTF_8);
-            }
+        renderAll(java.util.Arrays.asList(args), Long.MAX_VALUE, System.err);
+        if (Boolean.getBoolean("raylab.boundary.exit")) {
+            System.exit(0); // shutdown hooks run (a profiler's dump on exit; measurements only)
         }
         Runtime.getRuntime().halt(0);
     }

@@ -85,6 +85,17 @@ public final class TestLauncher {
         return THEN_BOUNDARY + config;
     }
 
+    private static final String THEN_RENDER = "--then-render=";
+
+    /**
+     * An entry of {@code classes} for {@link #run}, the last one: after every test, the scenes
+     * listed in {@code list} are rendered with a new student process described by {@code config},
+     * stopped after {@code seconds} ({@code TestMain --then-render}).
+     */
+    public static String thenRender(Path config, Path list, long seconds) {
+        return THEN_RENDER + config + "\0" + list + "\0" + seconds;
+    }
+
     public static Outcome run(List<Path> classPath, Path testClasses, List<String> tags, List<String> classes,
             Limits limits, Path workDir, List<TestResult> expected) throws IOException {
         return launch(classPath, testClasses, tags, classes, limits, workDir, false, expected, List.of(), List.of());
@@ -132,7 +143,10 @@ public final class TestLauncher {
             cmd.add(t);
         }
         for (String c : classes) {
-            if (c.startsWith(THEN_BOUNDARY)) {
+            if (c.startsWith(THEN_RENDER)) {
+                cmd.add("--then-render");
+                cmd.addAll(List.of(c.substring(THEN_RENDER.length()).split("\0", 3)));
+            } else if (c.startsWith(THEN_BOUNDARY)) {
                 cmd.add("--then-boundary");
                 cmd.add(c.substring(THEN_BOUNDARY.length()));
             } else {

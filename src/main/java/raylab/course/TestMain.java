@@ -45,7 +45,11 @@ import com.fasterxml.jackson.databind.ObjectMapper;
  * {@code --class NAME} (repeatable), {@code --timeout S} (per test), {@code --output-cap BYTES},
  * {@code --list} (report the discovered tests without running them), {@code --then-boundary FILE}
  * (in the grader's process: the classes named after it run after the ones before it, each group
- * to its end, with a new student process described by FILE; see {@code raylab.boundary.Remote}).
+ * to its end, with a new student process described by FILE; see {@code raylab.boundary.Remote}),
+ * {@code --then-render FILE ARGS SECONDS} (in the grader's process, after every test has been
+ * reported: the scenes listed in the file ARGS, one line each of SCENE.json, OUT.png and NAME,
+ * rendered by {@code raylab.boundary.TrustedRender} with a new student process described by
+ * FILE, stopped after SECONDS).
  */
 public final class TestMain {
     private TestMain() {
@@ -79,6 +83,7 @@ public final class TestMain {
         int timeout = 10;
         int cap = 16 * 1024;
         boolean list = false;
+        String[] render = null;
         for (int i = 0; i < args.length; i++) {
             switch (args[i]) {
                 case "--test-classes" -> testClasses = Path.of(args[++i]);
@@ -88,6 +93,7 @@ public final class TestMain {
                     groups.add(new ArrayList<>());
                     groupBoundary.add(args[++i]);
                 }
+                case "--then-render" -> render = new String[] {args[++i], args[++i], args[++i]};
                 case "--timeout" -> timeout = Integer.parseInt(args[++i]);
                 case "--output-cap" -> cap = Integer.parseInt(args[++i]);
                 case "--list" -> list = true;
@@ -181,8 +187,29 @@ public final class TestMain {
             launcher.execute(request(groups.get(g), testClasses, tags, timeout), listener);
         }
         channel.send("END");
+        if (render != null) {
+            render(render);
+        }
         // Stray threads started by the code under test must not keep this JVM alive.
         Runtime.getRuntime().halt(0);
+    }
+
+    /**
+     * The scenes of {@code --then-render}: a new student process (nothing a test passed to student
+     * code reaches a picture), then the renders; next to the list their time in ms
+     * ({@code millis.txt}) and, with RAYLAB_GRADE_TIMES, their phases ({@code times.txt}).
+     */
+    private static void render(String[] render) throws Exception {
+        Path list = Path.of(render[1]);
+        long deadline = System.nanoTime() + Long.parseLong(render[2]) * 1_000_000_000L;
+        Class.forName("raylab.boundary.Remote").getMethod("switchTo", Path.class).invoke(null, Path.of(render[0]));
+        long t0 = System.nanoTime();
+        try (PrintStream times = new PrintStream(list.resolveSibling("times.txt").toFile(), StandardCharsets.UTF_8)) {
+            Class.forName("raylab.boundary.TrustedRender").getMethod("renderAll", List.class, long.class,
+                    PrintStream.class).invoke(null, java.nio.file.Files.readAllLines(list), deadline, times);
+        }
+        java.nio.file.Files.writeString(list.resolveSibling("millis.txt"),
+                Long.toString((System.nanoTime() - t0) / 1_000_000));
     }
 
     private static LauncherDiscoveryRequest request(List<String> classes, Path testClasses, List<String> tags,

@@ -70,10 +70,20 @@ public final class GradedScenes {
      * @throws IOException with a one-line message (file, JSON path) for a bad variant spec
      */
     public static List<Graded> forGrading(Path root, List<Assignment> milestones, long gradingSeed) throws IOException {
+        return forGrading(root, milestones, gradingSeed, true);
+    }
+
+    /**
+     * As {@link #forGrading(Path, List, long)}; with {@code render} false the variants' references
+     * are left null (the grader has them from its render, or renders them with
+     * {@link #renderReference} when it needs them).
+     */
+    public static List<Graded> forGrading(Path root, List<Assignment> milestones, long gradingSeed, boolean render)
+            throws IOException {
         List<Graded> out = new ArrayList<>();
         for (Assignment a : milestones) {
             for (int i = 0; i < a.scenes().size(); i++) {
-                out.add(forGrading(root, a, i, gradingSeed, true));
+                out.add(forGrading(root, a, i, gradingSeed, render));
             }
         }
         return out;

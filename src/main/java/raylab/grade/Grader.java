@@ -169,17 +169,20 @@ public final class Grader {
                 references.put(sc.reference(), ref == null ? null : Files.readAllBytes(ref));
             }
         }
-        // Variants of the graded scenes, their references rendered here by the reference solution.
+        // Variants of the graded scenes. Behind the boundary their references come from the
+        // grader's render (the first round of each band traces with the reference only), else
+        // they are rendered here by the reference solution.
         notes.add("scene variants: seed " + seed + " (grade with --seed " + seed + " to grade the same variants again)");
         long v0 = System.nanoTime();
-        for (GradedScenes.Graded g : GradedScenes.forGrading(root, selected, seed)) {
+        for (GradedScenes.Graded g : GradedScenes.forGrading(root, selected, seed, !processBoundary())) {
             graded.put(g.scene().scene(), g);
             if (!g.note().isEmpty()) {
                 notes.add(g.note());
             }
         }
         if (TIMES) {
-            System.err.printf("variants and their references %.1f s%n", (System.nanoTime() - v0) / 1e9);
+            System.err.printf("variants%s %.1f s%n", processBoundary() ? "" : " and their references",
+                    (System.nanoTime() - v0) / 1e9);
         }
 
         Submission read;
@@ -354,11 +357,15 @@ public final class Grader {
         trusted.add(setup.standIns.get(a.id()));
         trusted.addAll(below);
         boolean boundary = processBoundary();
+        Renders renders = null;
         if (boundary) {
             long t0 = System.nanoTime();
-            runTests(a, visibleClasses, hiddenClasses, expected, trusted, overlay, setup, mdir, sandbox, got, notes);
+            renders = a.scenes().isEmpty() ? null : new Renders();
+            runTests(a, visibleClasses, hiddenClasses, expected, trusted, overlay, setup, mdir, sandbox, got, notes,
+                    renders, scenesCopy);
             if (TIMES) {
-                System.err.printf("%s visible and hidden %.1f s%n", a.id(), (System.nanoTime() - t0) / 1e9);
+                System.err.printf("%s visible and hidden%s %.1f s%n", a.id(), renders != null && renders.done
+                        ? " tests and the scenes" : "", (System.nanoTime() - t0) / 1e9);
             }
         } else {
             long t0 = System.nanoTime();
@@ -372,7 +379,9 @@ public final class Grader {
         tests.addAll(scoreTests(a, setup, plan(a), expected, got));
         // Scenes.
         long s0 = System.nanoTime();
-        tests.addAll(boundary ? gradeScenes(a, trusted, overlay, setup, mdir, scenesCopy, sandbox)
+        tests.addAll(renders != null && renders.done ? scoreScenes(a, renders.images, renders.errors, renders.late,
+                renders.references, renders.timedOut, false, renders.millis, options.sceneLimit().multipliedBy(a.scenes().size()))
+                : boundary ? gradeScenes(a, trusted, overlay, setup, mdir, scenesCopy, sandbox)
                 : gradeScenesInBox(a, layers, setup, mdir, scenesCopy, sandbox));
         if (TIMES) {
             System.err.printf("%s scenes %.1f s%n", a.id(), (System.nanoTime() - s0) / 1e9);
@@ -516,7 +525,8 @@ public final class Grader {
      */
     private void runTests(Assignment a, List<String> visibleClasses, List<String> hiddenClasses,
             List<TestResult> allExpected, List<Path> trusted, Path overlay, GraderSetup setup, Path mdir,
-            Sandbox sandbox, Map<String, TestResult> got, List<String> notes) throws IOException {
+            Sandbox sandbox, Map<String, TestResult> got, List<String> notes, Renders renders, Path scenesCopy)
+            throws IOException {
         java.util.Set<String> visible = new java.util.HashSet<>(visibleClasses);
         java.util.Set<String> hidden = new java.util.HashSet<>(hiddenClasses);
         List<TestResult> expected = allExpected.stream().filter(e -> visible.contains(GraderSetup.outer(e.className()))
@@ -527,7 +537,7 @@ public final class Grader {
         List<Path> cp = new ArrayList<>();
         cp.add(setup.tests); // the grader's tests first
         for (Path p : trusted) {
-            if (!setup.libraries.contains(p) || libraryFor(p, false)) {
+            if (!setup.libraries.contains(p) || libraryFor(p, renders != null)) {
                 cp.add(p);
             }
         }
@@ -548,16 +558,53 @@ public final class Grader {
                     classes.addAll(hiddenClasses);
                 }
             }
-            // One JVM for both groups, so the milestone's time limit covers both.
+            // The scenes last, in the same JVM, with a third student process (nothing a test
+            // passed to student code reaches a picture).
+            List<Path> pngs = new ArrayList<>();
+            Duration sceneLimit = options.sceneLimit().multipliedBy(renders == null ? 0 : a.scenes().size());
+            List<String> jvm = new ArrayList<>(List.of("-Draylab.boundary=" + dir.resolve("visible.properties")));
+            if (renders != null) {
+                Sandbox.Box box = studentBox(a, overlay, setup, mdir, sandbox);
+                boxes.add(box);
+                Path config = dir.resolve("render.properties");
+                raylab.boundary.Remote.writeConfig(config, studentConfig(a, box, overlay,
+                        options.sceneLimit().toMillis(), options.sceneHeapMb()));
+                Path rdir = Files.createDirectory(dir.resolve("render"));
+                Path list = rdir.resolve("scenes.txt");
+                Files.write(list, sceneArguments(a, rdir, scenesCopy, pngs));
+                classes.add(TestLauncher.thenRender(config, list, sceneLimit.toSeconds()));
+                // The milestone's reference predicts the student's answers, so that calls go in batches.
+                jvm.add("-Draylab.boundary.references=" + setup.references.get(a.id()).toAbsolutePath());
+            }
+            // One JVM for both groups and the scenes, so the milestone's time limits cover all.
             TestLauncher.Limits l = options.limits();
-            TestLauncher.Limits both = new TestLauncher.Limits(l.heapMegabytes(), l.wallClock().multipliedBy(2),
-                    l.perTestSeconds(), l.outputCapBytes());
+            TestLauncher.Limits both = new TestLauncher.Limits(Math.max(l.heapMegabytes(),
+                    renders == null ? 0 : options.sceneHeapMb()), l.wallClock().multipliedBy(2).plus(sceneLimit)
+                    .plusSeconds(renders == null ? 0 : 30), l.perTestSeconds(), l.outputCapBytes());
             TestLauncher.Outcome o = TestLauncher.run(cp, setup.tests, List.of(), classes, both, dir, expected,
-                    List.of(), List.of("-Draylab.boundary=" + dir.resolve("visible.properties")));
+                    List.of(), jvm);
             for (TestResult r : o.results()) {
                 got.put(r.id(), r);
             }
-            if (!o.finished() && !o.problem().isEmpty()) {
+            boolean allReported = expected.stream().map(e -> got.get(e.id())).allMatch(r -> r != null
+                    && r.status() != TestResult.Status.MISSING && !r.message().startsWith("this test was running when"));
+            if (renders != null) {
+                renders.done = true;
+                readRenders(pngs, renders.images, renders.errors, renders.late, renders.references);
+                renders.timedOut = !o.finished() && o.problem().startsWith("stopped after");
+                byte[] millis = readCapped(dir.resolve("render").resolve("millis.txt"), 64);
+                try {
+                    renders.millis = Long.parseLong(new String(millis == null ? new byte[0] : millis,
+                            java.nio.charset.StandardCharsets.US_ASCII).trim()) / a.scenes().size();
+                } catch (NumberFormatException e) {
+                    renders.millis = 0; // stopped before the renders ended
+                }
+                Path times = dir.resolve("render").resolve("times.txt");
+                if (TIMES && Files.isRegularFile(times)) {
+                    System.err.print(Files.readString(times));
+                }
+            }
+            if (!o.finished() && !o.problem().isEmpty() && !allReported) {
                 boolean visibleDone = expected.stream().filter(e -> visible.contains(GraderSetup.outer(e.className())))
                         .map(e -> got.get(e.id())).allMatch(r -> r != null && r.status() != TestResult.Status.MISSING
                                 && !r.message().startsWith("this test was running when"));
@@ -571,6 +618,38 @@ public final class Grader {
             }
             GraderSetup.deleteTree(dir);
         }
+    }
+
+    /**
+     * A variant's reference: rendered with the variant ({@code made}, by the grader's render:
+     * the reference's own trace) or, if that render could not make it, rendered here now.
+     */
+    private byte[] variantReference(GradedScenes.Graded g, byte[] made) {
+        if (g.reference() != null) {
+            return g.reference();
+        }
+        if (made != null) {
+            return made;
+        }
+        if (TIMES) {
+            System.err.println(g.scene().scene() + ": the variant's reference rendered here");
+        }
+        try {
+            return GradedScenes.renderReference(g.json(), options.root().toAbsolutePath().resolve(g.scene().scene()));
+        } catch (IOException | RuntimeException e) {
+            return null;
+        }
+    }
+
+    /** What the renders of M's scenes in the grader's test JVM left ({@link #runTests}). */
+    private static final class Renders {
+        boolean done;
+        boolean timedOut;
+        long millis;
+        final List<byte[]> images = new ArrayList<>();
+        final List<String> errors = new ArrayList<>();
+        final List<Boolean> late = new ArrayList<>();
+        final List<byte[]> references = new ArrayList<>();
     }
 
     /** Runs some of M's test classes in one child JVM in its own box; the results go into {@code got}. */
@@ -845,6 +924,44 @@ public final class Grader {
     }
 
     /**
+     * The arguments of {@code TrustedRender} for M's scenes (triples SCENE.json OUT.png NAME, the
+     * PNGs in {@code dir}, added to {@code pngs}); each variant is written next to its published
+     * scene in the grader's copy of {@code scenes/} (relative paths of meshes resolve as before).
+     */
+    private List<String> sceneArguments(Assignment a, Path dir, Path scenesCopy, List<Path> pngs) throws IOException {
+        Path root = options.root().toAbsolutePath();
+        List<String> out = new ArrayList<>();
+        for (int i = 0; i < a.scenes().size(); i++) {
+            Assignment.GradedScene sc = a.scenes().get(i);
+            Path scene = scenesCopy.resolve(root.resolve("scenes").relativize(root.resolve(sc.scene())).toString());
+            if (graded.containsKey(sc.scene()) && graded.get(sc.scene()).varied()) {
+                Path v = scene.resolveSibling("variant-" + a.id() + "-" + i + "-" + scene.getFileName());
+                Files.writeString(v, graded.get(sc.scene()).json());
+                scene = v;
+            }
+            Path png = dir.resolve("scene" + i + ".png");
+            out.add(scene.toString());
+            out.add(png.toString());
+            out.add(sc.scene());
+            pngs.add(png);
+        }
+        return out;
+    }
+
+    /** What a render left: the PNG and the first line of its error, capped in size, not following links. */
+    private static void readRenders(List<Path> pngs, List<byte[]> images, List<String> errors, List<Boolean> late,
+            List<byte[]> referencesMade) throws IOException {
+        for (Path png : pngs) {
+            images.add(readCapped(png, 64L << 20));
+            referencesMade.add(readCapped(Path.of(png + ".reference.png"), 64L << 20));
+            byte[] err = readCapped(Path.of(png + ".err"), 64 * 1024);
+            errors.add(err == null ? null : GraderSetup.firstLine(new String(err,
+                    java.nio.charset.StandardCharsets.UTF_8)).replaceFirst("^raylab: ", ""));
+            late.add(Files.exists(Path.of(png + ".timeout"), java.nio.file.LinkOption.NOFOLLOW_LINKS));
+        }
+    }
+
+    /**
      * Renders the milestone's scenes in the grader's process (stand-ins calling the student
      * process in its box; the PNGs are encoded there) and compares each with its reference.
      */
@@ -879,26 +996,14 @@ public final class Grader {
                 "-cp", String.join(java.io.File.pathSeparator,
                         cp.stream().map(Path::toString).toList()), "raylab.boundary.TrustedRender"));
         List<Path> pngs = new ArrayList<>();
-        for (int i = 0; i < a.scenes().size(); i++) {
-            Assignment.GradedScene sc = a.scenes().get(i);
-            Path scene = scenesCopy.resolve(root.resolve("scenes").relativize(root.resolve(sc.scene())).toString());
-            if (graded.containsKey(sc.scene()) && graded.get(sc.scene()).varied()) {
-                // The variant in place of the published scene, next to it (relative paths of meshes).
-                Path v = scene.resolveSibling("variant-" + a.id() + "-" + i + "-" + scene.getFileName());
-                Files.writeString(v, graded.get(sc.scene()).json());
-                scene = v;
-            }
-            Path png = dir.resolve("scene" + i + ".png");
-            cmd.add(scene.toString());
-            cmd.add(png.toString());
-            cmd.add(sc.scene());
-            pngs.add(png);
-        }
+        cmd.addAll(sceneArguments(a, dir, scenesCopy, pngs));
         long t0 = System.nanoTime();
         Duration limit = options.sceneLimit().multipliedBy(a.scenes().size());
         boolean timedOut = false;
         List<byte[]> images = new ArrayList<>();
         List<String> errors = new ArrayList<>();
+        List<Boolean> late = new ArrayList<>();
+        List<byte[]> referencesMade = new ArrayList<>();
         Process p = null;
         try {
             ProcessBuilder pb = new ProcessBuilder(cmd).directory(dir.toFile())
@@ -920,13 +1025,8 @@ public final class Grader {
             } catch (InterruptedException e) {
                 Thread.currentThread().interrupt();
             }
-            // Read what the child left only once it is gone, capped in size, not following links.
-            for (Path png : pngs) {
-                images.add(readCapped(png, 64L << 20));
-                byte[] err = readCapped(Path.of(png + ".err"), 64 * 1024);
-                errors.add(err == null ? null : GraderSetup.firstLine(new String(err,
-                        java.nio.charset.StandardCharsets.UTF_8)).replaceFirst("^raylab: ", ""));
-            }
+            // Read what the child left only once it is gone.
+            readRenders(pngs, images, errors, late, referencesMade);
         } finally {
             if (p != null) {
                 p.descendants().forEach(ProcessHandle::destroyForcibly);
@@ -938,12 +1038,24 @@ public final class Grader {
         long ms = (System.nanoTime() - t0) / 1_000_000 / a.scenes().size();
         // -XX:+ExitOnOutOfMemoryError ends the JVM with status 3 when the heap runs out.
         boolean outOfMemory = p != null && !timedOut && !p.isAlive() && p.exitValue() == 3;
+        return scoreScenes(a, images, errors, late, referencesMade, timedOut, outOfMemory, ms, limit);
+    }
+
+    /**
+     * M's scene items: each render compared with its reference ({@code late}: stopped at the time
+     * limit; {@code timedOut}: the whole run was).
+     */
+    private List<GradeReport.Test> scoreScenes(Assignment a, List<byte[]> images, List<String> errors,
+            List<Boolean> late, List<byte[]> referencesMade, boolean timedOut, boolean outOfMemory, long ms,
+            Duration limit) {
+        List<GradeReport.Test> out = new ArrayList<>();
         List<String> studentFiles = a.files().stream().map(Assignment.StudentFile::path).toList();
         for (int i = 0; i < a.scenes().size(); i++) {
             Assignment.GradedScene sc = a.scenes().get(i);
             String name = sc.scene();
             GradedScenes.Graded g = graded.get(sc.scene());
-            byte[] refBytes = g != null && g.varied() ? g.reference() : references.get(sc.reference());
+            byte[] refBytes = g != null && g.varied() ? variantReference(g, referencesMade.get(i))
+                    : references.get(sc.reference());
             byte[] mine = images.get(i);
             String errLine = errors.get(i) == null ? "" : errors.get(i);
             String msg;
@@ -952,7 +1064,9 @@ public final class Grader {
             if (refBytes == null) {
                 msg = "grader setup problem: no reference image " + sc.reference();
             } else if (mine == null || errors.get(i) != null) {
-                msg = !errLine.isEmpty() ? raylab.course.Explain.renderFailure(errLine, studentFiles)
+                msg = late.get(i) ? "the renders took longer than " + limit.toSeconds()
+                                + " s and were stopped (an endless loop, or far too slow?)"
+                        : !errLine.isEmpty() ? raylab.course.Explain.renderFailure(errLine, studentFiles)
                         : outOfMemory ? "the render ran out of memory (" + options.sceneHeapMb()
                                 + " MB): look for something that grows with every ray, such as a list or an array"
                                 + " allocated per hit and kept"

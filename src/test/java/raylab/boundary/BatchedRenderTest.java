@@ -86,7 +86,39 @@ class BatchedRenderTest {
         }
     }
 
-    private record Render(byte[] raw, String error) {
+    /**
+     * The first round of each band traces with predictions only, so the batched render also gives
+     * the reference solution's image, whatever the student answers (the grader compares with it).
+     */
+    @ParameterizedTest(name = "{0}")
+    @ValueSource(strings = {"reference", "ignoresClosest", "plainQuadratic"})
+    void theFirstRoundsGiveTheReferenceImageWhateverTheStudentAnswers(String student) throws Exception {
+        Path studentClasses = dir.resolve("student-" + student);
+        StandIns.compile(Map.of("raylab/surface/Sphere.java", variant(student)), StudentProcessTest.classDirs(),
+                studentClasses);
+        Render batched = render(student, studentClasses, true);
+        Path referenceClasses = dir.resolve("student-reference");
+        StandIns.compile(Map.of("raylab/surface/Sphere.java", variant("reference")), StudentProcessTest.classDirs(),
+                referenceClasses);
+        Render single = render("reference", referenceClasses, false);
+        assertEquals("", batched.error(), "no error");
+        assertTrue(batched.reference() != null, "the batched render of " + student + " leaves the reference image");
+        int[] want = pixels(single.png());
+        int[] got = pixels(batched.reference());
+        assertEquals(want.length, got.length, "pixels");
+        for (int i = 0; i < want.length; i++) {
+            final int k = i;
+            assertEquals(want[i], got[i], () -> "pixel " + k + ": the reference's colour, rendered one call at a time"
+                    + " (expected) and from the first rounds of " + student + "'s batched render (actual)");
+        }
+    }
+
+    private static int[] pixels(byte[] png) throws java.io.IOException {
+        java.awt.image.BufferedImage im = javax.imageio.ImageIO.read(new java.io.ByteArrayInputStream(png));
+        return im.getRGB(0, 0, im.getWidth(), im.getHeight(), null, 0, im.getWidth());
+    }
+
+    private record Render(byte[] raw, String error, byte[] png, byte[] reference) {
     }
 
     private static Render render(String student, Path studentClasses, boolean batched) throws Exception {
@@ -120,7 +152,10 @@ class BatchedRenderTest {
         assertTrue(p.waitFor(300, TimeUnit.SECONDS), "the render finished");
         Path err = Path.of(png + ".err");
         Path raw = Path.of(png + ".raw");
+        Path ref = Path.of(png + ".reference.png");
         return new Render(Files.isRegularFile(raw) ? Files.readAllBytes(raw) : null,
-                Files.isRegularFile(err) ? Files.readString(err, StandardCharsets.UTF_8) : "");
+                Files.isRegularFile(err) ? Files.readString(err, StandardCharsets.UTF_8) : "",
+                Files.isRegularFile(png) ? Files.readAllBytes(png) : null,
+                Files.isRegularFile(ref) ? Files.readAllBytes(ref) : null);
     }
 }
