@@ -406,7 +406,25 @@ public final class Speculation {
 
     // --- predictors: the milestone's reference, run here ---
 
+    /** The last predictor asked for (names compared by identity: the stand-ins' constants). */
+    private String lastCls;
+    private String lastName;
+    private int lastArity;
+    private Method lastMethod;
+
     private Method predictorMethod(String cls, String name, int arity) throws ReflectiveOperationException {
+        if (cls == lastCls && name == lastName && arity == lastArity && lastMethod != null) {
+            return lastMethod;
+        }
+        Method m = findPredictorMethod(cls, name, arity);
+        lastCls = cls;
+        lastName = name;
+        lastArity = arity;
+        lastMethod = m;
+        return m;
+    }
+
+    private Method findPredictorMethod(String cls, String name, int arity) throws ReflectiveOperationException {
         String k = cls + "#" + name + "#" + arity;
         Method m = predictorMethods.get(k);
         if (m == null) {

@@ -208,6 +208,7 @@ public final class StudentProcess implements AutoCloseable {
         handleOf.clear();
         byHandle.clear();
         methodIds.clear();
+        lastId = 0;
         stderr = Files.createTempFile("student", ".err");
         ProcessBuilder pb = new ProcessBuilder(config.command()).redirectError(stderr.toFile());
         if (config.directory() != null) {
@@ -520,7 +521,25 @@ public final class StudentProcess implements AutoCloseable {
         }
     }
 
+    /** The last method asked for (a render asks for the same one again and again): names by identity. */
+    private String lastCls;
+    private String lastName;
+    private int lastArity;
+    private int lastId;
+
     private int method(String cls, String name, int arity) throws IOException {
+        if (cls == lastCls && name == lastName && arity == lastArity && lastId != 0) {
+            return lastId;
+        }
+        int id = methodId(cls, name, arity);
+        lastCls = cls;
+        lastName = name;
+        lastArity = arity;
+        lastId = id;
+        return id;
+    }
+
+    private int methodId(String cls, String name, int arity) throws IOException {
         String key = cls + "#" + name + "#" + arity;
         Integer id = methodIds.get(key);
         if (id != null) {
