@@ -117,20 +117,43 @@ public final class TestLauncher {
     public static Outcome run(List<Path> classPath, Path testClasses, List<String> tags, List<String> classes,
             Limits limits, Path workDir, List<TestResult> expected, List<String> wrapper, List<String> jvmOptions)
             throws IOException {
-        return launch(classPath, testClasses, tags, classes, limits, workDir, false, expected, wrapper, jvmOptions);
+        return launch(classPath, testClasses, tags, classes, limits, workDir, false, expected, wrapper, jvmOptions,
+                true);
+    }
+
+    /**
+     * As {@link #run}, for a JVM that runs no student code (the grader's process behind the
+     * process boundary, whose stand-ins call a student process): it sees every module of the
+     * JDK, since {@code --limit-modules} would turn class data sharing off and only guards a
+     * JVM where student code runs.
+     */
+    public static Outcome runTrusted(List<Path> classPath, Path testClasses, List<String> classes, Limits limits,
+            Path workDir, List<TestResult> expected, List<String> jvmOptions) throws IOException {
+        return launch(classPath, testClasses, List.of(), classes, limits, workDir, false, expected, List.of(),
+                jvmOptions, false);
     }
 
     private static Outcome launch(List<Path> classPath, Path testClasses, List<String> tags, List<String> classes,
             Limits limits, Path workDir, boolean list, List<TestResult> expected, List<String> wrapper,
             List<String> jvmOptions) throws IOException {
+        return launch(classPath, testClasses, tags, classes, limits, workDir, list, expected, wrapper, jvmOptions,
+                true);
+    }
+
+    private static Outcome launch(List<Path> classPath, Path testClasses, List<String> tags, List<String> classes,
+            Limits limits, Path workDir, boolean list, List<TestResult> expected, List<String> wrapper,
+            List<String> jvmOptions, boolean limitModules) throws IOException {
         String java = Path.of(System.getProperty("java.home"), "bin", "java").toString();
         List<String> cmd = new ArrayList<>(wrapper);
         cmd.add(java);
         cmd.addAll(jvmOptions);
         cmd.addAll(List.of("-Xmx" + limits.heapMegabytes() + "m", "-Xss1m",
                 "-XX:+UseSerialGC", "-XX:TieredStopAtLevel=1", "-Djava.awt.headless=true",
-                "-XX:+DisableAttachMechanism", "-XX:-UsePerfData", "--limit-modules", CHILD_MODULES,
-                "-Dfile.encoding=UTF-8", "-cp",
+                "-XX:+DisableAttachMechanism", "-XX:-UsePerfData"));
+        if (limitModules) {
+            cmd.addAll(List.of("--limit-modules", CHILD_MODULES));
+        }
+        cmd.addAll(List.of("-Dfile.encoding=UTF-8", "-cp",
                 classPath.stream().map(Path::toString).collect(Collectors.joining(File.pathSeparator)),
                 TestMain.class.getName(), "--timeout", Integer.toString(limits.perTestSeconds()),
                 "--output-cap", Integer.toString(limits.outputCapBytes())));
