@@ -504,7 +504,9 @@ public final class Grader {
         cmd.addAll(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(), "-Xmx" + heapMb + "m",
                 "-Xss4m", "-XX:+UseSerialGC", "-XX:+ExitOnOutOfMemoryError", "-Djava.awt.headless=true",
                 "-XX:+DisableAttachMechanism", "-XX:-UsePerfData", "--limit-modules", TestLauncher.CHILD_MODULES,
-                "-Dfile.encoding=UTF-8"));
+                // C1 only: at 0.5 CPU, C2's compiler threads cost more than its faster code saves,
+                // even in a render's hundreds of thousands of calls (grader/README.md).
+                "-XX:TieredStopAtLevel=1", "-Dfile.encoding=UTF-8"));
         cmd.addAll(extraJvmOptions("RAYLAB_STUDENT_JVM_OPTS"));
         cmd.addAll(List.of("-cp", String.join(java.io.File.pathSeparator, box.classPath()),
                 "raylab.remote.StudentServer"));
