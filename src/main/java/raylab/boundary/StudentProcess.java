@@ -348,6 +348,10 @@ public final class StudentProcess implements AutoCloseable {
         Object result;
         RuntimeException thrown;
         int[] used = new int[0];
+        /** The grader's answers to questions the call sent back: [question, answer] payloads. */
+        final List<byte[][]> truths = new ArrayList<>();
+        /** Whether its questions are asked as callbacks (one of them could not be answered later). */
+        boolean live;
 
         public MultiCall(String cls, String name, Object target, Object[] args, List<Answered> answers) {
             this.cls = cls;
@@ -382,71 +386,176 @@ public final class StudentProcess implements AutoCloseable {
     }
 
     /**
-     * Many calls in one frame each way ({@link Wire#MULTI}); callbacks not answered in advance
-     * are answered as they come. Each call's outcome is set on it.
+     * Frames of one {@link #multi} in which questions to the grader's surfaces and materials that
+     * were not answered in advance come back with the calls (answered, they go out again with the
+     * calls that asked them); after them, such questions are callbacks.
+     */
+    static final int DEFERRED_ROUNDS = 4;
+
+    /**
+     * Many calls in one frame each way ({@link Wire#MULTI}). A question to the grader's surfaces
+     * or materials that was not answered in advance comes back with its call, which is sent again
+     * with the grader's answer (up to {@link #DEFERRED_ROUNDS} frames); other questions, and all
+     * after those frames, are answered as they come. Each call's outcome is set on it, exactly as
+     * if every question had been answered as it came: a question's answer is the grader's own,
+     * whenever it is given.
      */
     public synchronized void multi(List<MultiCall> batch) {
         run(() -> {
-            buf.reset();
-            buf.writeInt(batch.size());
-            Wire.Out q = new Wire.Out();
-            Wire.Out a = new Wire.Out();
-            for (MultiCall c : batch) {
-                buf.writeInt(method(c.cls, c.name, c.args.length));
-                Wire.writeValue(buf, c.target, refs);
-                buf.writeInt(c.args.length);
-                for (Object x : c.args) {
-                    Wire.writeValue(buf, x, refs);
-                }
-                buf.writeInt(c.answers.size());
-                for (Answered an : c.answers) {
-                    q.reset();
-                    q.writeInt(ephemeral(an.target()));
-                    q.writeByte(an.op());
-                    q.writeInt(an.args().length);
-                    for (Object x : an.args()) {
-                        Wire.writeValue(q, x, asStudent);
-                    }
-                    buf.writeBytes(q);
-                    a.reset();
-                    Wire.writeValue(a, an.result(), refs);
-                    for (Object x : an.after()) {
-                        if (x instanceof IntersectionRecord r) {
-                            Wire.writeRecord(a, r, refs);
-                        }
-                    }
-                    buf.writeBytes(a);
-                }
-            }
-            int conv = nextConv++;
-            Wire.writeFrame(out, Wire.MULTI, conv, buf);
-            out.flush();
             calls += batch.size();
-            Wire.Frame f = await(conv, Wire.MULTI_RETURN);
-            Wire.In in = f.in();
-            int n = in.readInt();
-            if (n != batch.size()) {
-                throw new Wire.ProtocolException("answered " + n + " of " + batch.size() + " calls");
+            List<MultiCall> open = batch;
+            for (int round = 0; !open.isEmpty(); round++) {
+                open = multiRound(open, round < DEFERRED_ROUNDS);
             }
-            for (MultiCall c : batch) {
-                if (in.readByte() == 0) {
-                    c.result = Wire.readValue(in, refs);
-                    copyRecords(in, c.args);
-                } else {
-                    c.thrown = throwable(in);
-                }
-                int u = in.readInt();
-                if (u < 0 || u > c.answers.size() * 4 + 16) {
-                    throw new Wire.ProtocolException("bad count of answers used");
-                }
-                c.used = new int[u];
-                for (int i = 0; i < u; i++) {
-                    c.used[i] = in.readInt();
-                }
-            }
-            output(in.readString());
             return null;
         });
+    }
+
+    /**
+     * Whether argument {@code b} of a call in a MULTI frame goes as {@link Wire#AS_BEFORE} after
+     * {@code a}, the previous call's at the same place: a ray or a record equal bit for bit, or
+     * the same object (a value, a light, or an object of the grader's or the student's) except a
+     * shading point, which holds the answers of its own call.
+     */
+    private static boolean asBefore(Object a, Object b) {
+        if (a == b) {
+            return !(b instanceof ShadingPoint) && !(b instanceof IntersectionRecord);
+        }
+        return Wire.asBefore(a, b);
+    }
+
+    /** One MULTI frame each way; returns the calls sent back with questions, now answered. */
+    private List<MultiCall> multiRound(List<MultiCall> batch, boolean defer) throws IOException {
+        buf.reset();
+        buf.writeInt(batch.size());
+        Wire.Out q = new Wire.Out();
+        Wire.Out a = new Wire.Out();
+        Object[] previous = new Object[0];
+        for (MultiCall c : batch) {
+            buf.writeBoolean(defer && !c.live);
+            buf.writeInt(method(c.cls, c.name, c.args.length));
+            Wire.writeValue(buf, c.target, refs);
+            buf.writeInt(c.args.length);
+            for (int j = 0; j < c.args.length; j++) {
+                // The ray of a pixel goes to every surface, and a record a surface missed to the next.
+                if (j < previous.length && asBefore(previous[j], c.args[j])) {
+                    buf.writeByte(Wire.AS_BEFORE);
+                } else {
+                    Wire.writeValue(buf, c.args[j], refs);
+                }
+            }
+            previous = c.args;
+            buf.writeInt(c.answers.size());
+            buf.writeInt(c.answers.size() + c.truths.size());
+            for (Answered an : c.answers) {
+                q.reset();
+                q.writeInt(ephemeral(an.target()));
+                q.writeByte(an.op());
+                q.writeInt(an.args().length);
+                for (Object x : an.args()) {
+                    Wire.writeValue(q, x, asStudent);
+                }
+                buf.writeBytes(q);
+                a.reset();
+                Wire.writeValue(a, an.result(), refs);
+                for (Object x : an.after()) {
+                    if (x instanceof IntersectionRecord r) {
+                        Wire.writeRecord(a, r, refs);
+                    }
+                }
+                buf.writeBytes(a);
+            }
+            for (byte[][] t : c.truths) {
+                buf.writeBytes(t[0]);
+                buf.writeBytes(t[1]);
+            }
+        }
+        int conv = nextConv++;
+        Wire.writeFrame(out, Wire.MULTI, conv, buf);
+        out.flush();
+        Wire.Frame f = await(conv, Wire.MULTI_RETURN);
+        Wire.In in = f.in();
+        multiBytes += buf.size() + in.remaining();
+        int n = in.readInt();
+        if (n != batch.size()) {
+            throw new Wire.ProtocolException("answered " + n + " of " + batch.size() + " calls");
+        }
+        List<MultiCall> again = new ArrayList<>();
+        List<List<byte[]>> asked = new ArrayList<>();
+        for (MultiCall c : batch) {
+            byte status = in.readByte();
+            if (status == 2) {
+                int k = in.readInt();
+                if (!defer || c.live || k < 1 || k > 16) {
+                    throw new Wire.ProtocolException("questions sent back where none may be");
+                }
+                List<byte[]> questions = new ArrayList<>(k);
+                for (int i = 0; i < k; i++) {
+                    questions.add(in.readBytes());
+                }
+                again.add(c);
+                asked.add(questions);
+                continue;
+            }
+            if (status == 0) {
+                c.result = Wire.readValue(in, refs);
+                for (Object x : c.args) {
+                    if (x instanceof IntersectionRecord r) {
+                        byte tag = in.readByte();
+                        if (tag == Wire.RECORD) {
+                            Wire.readRecordInto(in, r, refs);
+                        } else if (tag == Wire.AS_BEFORE) {
+                            r.material = r.surface == null ? null : r.surface.material(); // as readRecordInto
+                        } else {
+                            throw new Wire.ProtocolException("bad record tag " + tag);
+                        }
+                    }
+                }
+            } else if (status == 1) {
+                c.thrown = throwable(in);
+            } else {
+                throw new Wire.ProtocolException("bad call status " + status);
+            }
+            int u = in.readInt();
+            if (u < 0 || u > c.answers.size() * 4 + 16) {
+                throw new Wire.ProtocolException("bad count of answers used");
+            }
+            c.used = new int[u];
+            for (int i = 0; i < u; i++) {
+                c.used[i] = in.readInt();
+                if (c.used[i] < 0 || c.used[i] >= c.answers.size()) {
+                    throw new Wire.ProtocolException("used an answer that was not given");
+                }
+            }
+        }
+        output(in.readString());
+        // Answered only now that the whole reply is read: an answer may itself call the student process.
+        for (int i = 0; i < again.size(); i++) {
+            MultiCall c = again.get(i);
+            for (byte[] question : asked.get(i)) {
+                byte[] answer = answerLater(question);
+                deferredQuestions++;
+                if (answer == null) {
+                    c.live = true; // asked again as a callback, which reports what went wrong
+                } else if (c.truths.stream().noneMatch(t -> java.util.Arrays.equals(t[0], question))) {
+                    c.truths.add(new byte[][] {question, answer});
+                }
+            }
+        }
+        return again;
+    }
+
+    private long deferredQuestions;
+    private long multiBytes;
+
+    /** Bytes of MULTI frames sent and received, for measurements. */
+    public synchronized long multiBytes() {
+        return multiBytes;
+    }
+
+    /** Questions answered after their call came back, for measurements. */
+    public synchronized long deferredQuestions() {
+        return deferredQuestions;
     }
 
     private void output(String s) {
@@ -638,9 +747,32 @@ public final class StudentProcess implements AutoCloseable {
 
     private long liveCallbacks;
 
-    private void callback(Wire.Frame f) throws IOException {
-        liveCallbacks++;
-        Wire.In in = f.in();
+    /**
+     * The answer (a CB_RETURN payload) to a question a call sent back, or null if the grader's
+     * object could not answer it (the call then asks it as a callback, which reports why).
+     */
+    private byte[] answerLater(byte[] question) throws IOException {
+        Question q = question(new Wire.In(question, 0, question.length));
+        if (!Wire.deferrable(q.op())) {
+            throw new Wire.ProtocolException("a question sent back that must be asked");
+        }
+        Object result;
+        try {
+            result = answer(q.target(), q.op(), q.args());
+        } catch (StudentTimeout e) {
+            throw e; // the process is gone
+        } catch (RuntimeException | Error e) {
+            return null;
+        }
+        return answerPayload(result, q.args()).key().bytes();
+    }
+
+    /** A question of the student's code: the grader's object asked (null: unknown), the operation, the arguments. */
+    private record Question(Object target, byte op, Object[] args) {
+    }
+
+    /** Reads a CALLBACK payload. */
+    private Question question(Wire.In in) throws IOException {
         int id = in.readInt();
         byte op = in.readByte();
         int n = in.readInt();
@@ -651,10 +783,31 @@ public final class StudentProcess implements AutoCloseable {
         for (int i = 0; i < n; i++) {
             a[i] = Wire.readValue(in, refs);
         }
-        Object target = id > 0 && id <= ephemeral.size() ? ephemeral.get(id - 1) : null;
+        if (!in.atEnd()) {
+            throw new Wire.ProtocolException("a question with bytes after its arguments");
+        }
+        return new Question(id > 0 && id <= ephemeral.size() ? ephemeral.get(id - 1) : null, op, a);
+    }
+
+    /** A CB_RETURN payload: the answer, then each record argument as answering left it. */
+    private Wire.Out answerPayload(Object result, Object[] a) {
+        Wire.Out o = new Wire.Out();
+        Wire.writeValue(o, result, refs);
+        for (Object x : a) {
+            if (x instanceof IntersectionRecord r) {
+                Wire.writeRecord(o, r, refs);
+            }
+        }
+        return o;
+    }
+
+    private void callback(Wire.Frame f) throws IOException {
+        liveCallbacks++;
+        Question q = question(f.in());
+        Object[] a = q.args();
         Object result;
         try {
-            result = answer(target, op, a);
+            result = answer(q.target(), q.op(), a);
         } catch (StudentTimeout e) {
             throw e; // the process is gone
         } catch (RuntimeException | Error e) {
@@ -667,14 +820,7 @@ public final class StudentProcess implements AutoCloseable {
             out.flush();
             return;
         }
-        Wire.Out o = new Wire.Out();
-        Wire.writeValue(o, result, refs);
-        for (Object x : a) {
-            if (x instanceof IntersectionRecord r) {
-                Wire.writeRecord(o, r, refs);
-            }
-        }
-        Wire.writeFrame(out, Wire.CB_RETURN, f.conv(), o);
+        Wire.writeFrame(out, Wire.CB_RETURN, f.conv(), answerPayload(result, a));
         out.flush();
     }
 

@@ -213,6 +213,8 @@ public final class TrustedRender {
                 long w0 = System.nanoTime();
                 long s0 = spec == null ? 0 : StudentProcess.cpuNanosOf(Remote.process());
                 long l0 = spec == null ? 0 : Remote.process().liveCallbacks();
+                long d0 = spec == null ? 0 : Remote.process().deferredQuestions();
+                long b0 = spec == null ? 0 : Remote.process().multiBytes();
                 Image reference = spec == null ? null : new Image(scene.width, scene.height);
                 int[] set = new int[1];
                 Image image = render(scene, args.get(i + 2), spec, reference, set);
@@ -224,8 +226,10 @@ public final class TrustedRender {
                     writeRaw(image, Path.of(out + ".raw")); // every channel's bits, for tests
                 }
                 if (spec != null && System.getenv("RAYLAB_GRADE_TIMES") != null) {
-                    times.printf("%s: %s, live callbacks %d; wall %.2f s, grader process CPU %.2f s, student CPU %.2f s%n",
+                    times.printf("%s: %s, live callbacks %d, questions sent back %d, %.1f MB in frames; wall %.2f s,"
+                            + " grader process CPU %.2f s, student CPU %.2f s%n",
                             args.get(i + 2), spec.counts(), Remote.process().liveCallbacks() - l0,
+                            Remote.process().deferredQuestions() - d0, (Remote.process().multiBytes() - b0) / 1e6,
                             (System.nanoTime() - w0) / 1e9,
                             (ProcessHandle.current().info().totalCpuDuration().map(java.time.Duration::toNanos).orElse(0L) - c0) / 1e9,
                             (StudentProcess.cpuNanosOf(Remote.process()) - s0) / 1e9);

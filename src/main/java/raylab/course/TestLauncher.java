@@ -146,10 +146,10 @@ public final class TestLauncher {
         String java = Path.of(System.getProperty("java.home"), "bin", "java").toString();
         List<String> cmd = new ArrayList<>(wrapper);
         cmd.add(java);
-        cmd.addAll(jvmOptions);
         cmd.addAll(List.of("-Xmx" + limits.heapMegabytes() + "m", "-Xss1m",
                 "-XX:+UseSerialGC", "-XX:TieredStopAtLevel=1", "-Djava.awt.headless=true",
                 "-XX:+DisableAttachMechanism", "-XX:-UsePerfData"));
+        cmd.addAll(jvmOptions); // after the defaults, so that they can change them
         if (limitModules) {
             cmd.addAll(List.of("--limit-modules", CHILD_MODULES));
         }

@@ -583,6 +583,7 @@ public final class Grader {
             TestLauncher.Limits both = new TestLauncher.Limits(Math.max(l.heapMegabytes(),
                     renders == null ? 0 : options.sceneHeapMb()), l.wallClock().multipliedBy(2).plus(sceneLimit)
                     .plusSeconds(renders == null ? 0 : 30), l.perTestSeconds(), l.outputCapBytes());
+            jvm.addAll(extraJvmOptions("RAYLAB_TRUSTED_JVM_OPTS"));
             TestLauncher.Outcome o = TestLauncher.runTrusted(cp, setup.tests, classes, both, dir, expected, jvm);
             for (TestResult r : o.results()) {
                 got.put(r.id(), r);

@@ -17,6 +17,7 @@ import java.lang.reflect.InvocationTargetException;
 import java.lang.reflect.Method;
 import java.nio.charset.StandardCharsets;
 import java.util.ArrayList;
+import java.util.Arrays;
 import java.util.HashMap;
 import java.util.HashSet;
 import java.util.IdentityHashMap;
@@ -52,7 +53,7 @@ public final class StudentServer {
     /** The grader's lights of the current call, by their numbers there. */
     private final Map<Object, Integer> lightIds = new IdentityHashMap<>();
     private int depth;
-    private final ByteArrayOutputStream captured = new ByteArrayOutputStream();
+    private final Captured captured = new Captured();
     private final Wire.Out reply = new Wire.Out();
     private final Refs refs = new Refs();
     private int nextConv = 1;
@@ -63,6 +64,15 @@ public final class StudentServer {
     private Map<Wire.Key, Integer> answerOf;
     private List<byte[]> answers;
     private List<Integer> used;
+    /** Answers below this index rest on the grader's predictions and are reported when used. */
+    private int predicted;
+    /**
+     * The questions a MULTI call asked that were not answered, when the grader asked for them to
+     * be sent back instead of asked one at a time; null: ask them as callbacks.
+     */
+    private List<byte[]> deferred;
+    /** At most this many questions of one call are sent back; the grader asks again for more. */
+    static final int MAX_DEFERRED = 16;
 
     StudentServer(InputStream in, OutputStream out, Set<String> studentClasses) {
         this.in = new DataInputStream(new BufferedInputStream(in, 1 << 16));
@@ -143,7 +153,10 @@ public final class StudentServer {
         Map<Wire.Key, Integer> outerAnswerOf = answerOf;
         List<byte[]> outerAnswers = answers;
         List<Integer> outerUsed = used;
+        List<byte[]> outerDeferred = deferred;
+        int outerPredicted = predicted;
         answerOf = null;
+        deferred = null;
         try {
             switch (f.type()) {
                 case Wire.DEFINE -> define(f);
@@ -157,6 +170,8 @@ public final class StudentServer {
             answerOf = outerAnswerOf;
             answers = outerAnswers;
             used = outerUsed;
+            deferred = outerDeferred;
+            predicted = outerPredicted;
             if (--depth == 0) {
                 lightIds.clear(); // the grader's numbers hold for one call
             }
@@ -311,9 +326,11 @@ public final class StudentServer {
     }
 
     /**
-     * Many calls, of any methods, each with the answers the grader expects its callbacks to need:
-     * a callback whose question is among them is answered here (and reported as used), any other
-     * one is asked. A call that throws is reported in its place; the others still run.
+     * Many calls, of any methods, each with the answers the grader expects its callbacks to need
+     * (predicted: a used one is reported) and the grader's own answers to questions the call asked
+     * in an earlier frame: a callback whose question is among them is answered here, any other one
+     * is asked, or, when the frame says so, sent back with the call instead ({@link Wire#MULTI}).
+     * A call that throws is reported in its place; the others still run.
      */
     private void multi(Wire.Frame f) throws IOException {
         Wire.In in = f.in();
@@ -321,35 +338,96 @@ public final class StudentServer {
         if (calls < 0 || calls > in.end - in.pos) {
             throw new Wire.ProtocolException("bad call count " + calls);
         }
-        Wire.Out results = new Wire.Out();
+        Wire.Out results = depth == 1 ? multiResults : new Wire.Out();
+        results.reset();
+        // An argument sent AS_BEFORE is the previous call's at the same place: the same object, or
+        // for a record a new one with the fields that one was sent with.
+        Object[] previous = new Object[0];
         for (int i = 0; i < calls; i++) {
+            boolean defer = in.readBoolean();
             Method m = methodOf(in.readInt());
             Object target = Wire.readValue(in, refs);
-            Object[] args = readArgs(in, in.readInt());
+            int n = in.readInt();
+            if (n < 0 || n > 64) {
+                throw new Wire.ProtocolException("bad argument count " + n);
+            }
+            Object[] args = new Object[n];
+            Object[] sent = new Object[n];
+            for (int j = 0; j < n; j++) {
+                if (in.peekByte() == Wire.AS_BEFORE) {
+                    in.readByte();
+                    if (j >= previous.length || previous[j] == null) {
+                        throw new Wire.ProtocolException("an argument as before with none before");
+                    }
+                    sent[j] = previous[j];
+                    args[j] = sent[j] instanceof IntersectionRecord r ? Wire.copyRecord(r) : sent[j];
+                } else {
+                    args[j] = Wire.readValue(in, refs);
+                    sent[j] = args[j] instanceof IntersectionRecord r ? Wire.copyRecord(r) : args[j];
+                }
+            }
+            previous = sent;
             int k = in.readInt();
-            if (k < 0 || k > in.end - in.pos) {
-                throw new Wire.ProtocolException("bad answer count " + k);
+            int total = in.readInt();
+            if (k < 0 || total < k || total > in.end - in.pos) {
+                throw new Wire.ProtocolException("bad answer count " + total);
             }
-            Map<Wire.Key, Integer> of = new HashMap<>();
-            List<byte[]> given = new ArrayList<>(k);
-            for (int j = 0; j < k; j++) {
-                of.putIfAbsent(new Wire.Key(in.readBytes()), j);
-                given.add(in.readBytes());
+            if (total == 0) {
+                answerOf = Map.of();
+                answers = List.of();
+            } else {
+                Map<Wire.Key, Integer> of = new HashMap<>();
+                List<byte[]> given = new ArrayList<>(total);
+                for (int j = 0; j < total; j++) {
+                    of.putIfAbsent(new Wire.Key(in.readBytes()), j);
+                    given.add(in.readBytes());
+                }
+                answerOf = of;
+                answers = given;
             }
-            answerOf = of;
-            answers = given;
+            predicted = k;
             used = new ArrayList<>();
+            deferred = defer ? new ArrayList<>() : null;
+            int outputMark = captured.size();
+            Object result = null;
+            Throwable thrown = null;
             try {
-                Object result = invoke(m, target, args);
-                results.writeByte(0);
-                writeResult(results, result, args);
+                result = invoke(m, target, args);
             } catch (Throwable e) {
-                results.writeByte(1);
-                writeThrowable(results, e);
+                thrown = e;
             }
-            results.writeInt(used.size());
-            used.forEach(results::writeInt);
+            if (deferred != null && !deferred.isEmpty()) {
+                // It asked something not answered yet (whatever it did with the Deferred it got):
+                // its outcome does not count; the grader answers and sends the call again. What it
+                // printed is dropped, so that the output shows each call once.
+                captured.truncate(outputMark);
+                results.writeByte(2);
+                results.writeInt(deferred.size());
+                deferred.forEach(results::writeBytes);
+            } else {
+                if (thrown == null) {
+                    results.writeByte(0);
+                    Wire.writeValue(results, result, refs);
+                    for (int j = 0; j < n; j++) {
+                        if (args[j] instanceof IntersectionRecord r) {
+                            // A record left as it came (a miss) is one byte.
+                            if (Wire.sameRecord(r, (IntersectionRecord) sent[j])) {
+                                results.writeByte(Wire.AS_BEFORE);
+                            } else {
+                                results.writeByte(Wire.RECORD);
+                                Wire.writeRecord(results, r, refs);
+                            }
+                        }
+                    }
+                } else {
+                    results.writeByte(1);
+                    writeThrowable(results, thrown);
+                }
+                results.writeInt(used.size());
+                used.forEach(results::writeInt);
+            }
             answerOf = null;
+            deferred = null;
         }
         reply.reset();
         reply.writeInt(calls);
@@ -357,6 +435,9 @@ public final class StudentServer {
         reply.writeString(drainOutput());
         send(Wire.MULTI_RETURN, f.conv());
     }
+
+    /** The reply of a MULTI frame read at the top level, kept from frame to frame. */
+    private final Wire.Out multiResults = new Wire.Out();
 
     private void writeResult(Wire.Out o, Object result, Object[] args) {
         Wire.writeValue(o, result, refs);
@@ -424,10 +505,21 @@ public final class StudentServer {
             for (Object a : args) {
                 Wire.writeValue(o, a, refs);
             }
-            Integer given = answerOf == null ? null : answerOf.get(o.key());
+            Wire.Key question = answerOf == null ? null : o.key();
+            Integer given = question == null ? null : answerOf.get(question);
+            if (given == null && deferred != null && Wire.deferrable(op)) {
+                // Sent back with the call, which the grader sends again with the answer.
+                if (deferred.size() < MAX_DEFERRED && deferred.stream().noneMatch(q -> Arrays.equals(q,
+                        question.bytes()))) {
+                    deferred.add(question.bytes());
+                }
+                throw new Deferred();
+            }
             if (given != null) {
                 // Answered in advance by the grader: read as the grader's reply would be.
-                used.add(given);
+                if (given < predicted) {
+                    used.add(given);
+                }
                 byte[] b = answers.get(given);
                 Wire.In a = new Wire.In(b, 0, b.length);
                 Object v = Wire.readValue(a, refs);
@@ -460,6 +552,25 @@ public final class StudentServer {
         } catch (IOException e) {
             Runtime.getRuntime().halt(3);
             throw new AssertionError(e);
+        }
+    }
+
+    /**
+     * Thrown through a student call that asked a question the grader has not answered yet (see
+     * {@link #multi}); the call is run again once it has. Student code should not catch this.
+     */
+    public static final class Deferred extends Error {
+        private static final long serialVersionUID = 1L;
+
+        Deferred() {
+            super("the grader answers this question with the next frame", null, false, false);
+        }
+    }
+
+    /** Captured output that can be cut back to an earlier size. */
+    private static final class Captured extends ByteArrayOutputStream {
+        synchronized void truncate(int size) {
+            count = Math.min(count, size);
         }
     }
 

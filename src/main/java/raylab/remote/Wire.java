@@ -54,15 +54,20 @@ public final class Wire {
     /** Either side: the empty reply to DEFINE and METHOD. */
     public static final byte ACK = 11;
     /**
-     * Grader: {@code [int calls]([int method][value target][int n][values][int k]([bytes question]
-     * [bytes answer])^k)...} many calls of any methods at once, each with answers to callbacks the
-     * grader expects it to ask: a question is a CALLBACK payload as the student process writes it,
-     * its answer a CB_RETURN payload. A question asked that is not among them is a callback.
+     * Grader: {@code [int calls]([bool defer][int method][value target][int n][values][int k]
+     * [int total]([bytes question][bytes answer])^total)...} many calls of any methods at once,
+     * each with answers to callbacks: the first {@code k} are the grader's predictions of what the
+     * call will ask, the others the grader's answers to questions it asked in an earlier frame. A
+     * question is a CALLBACK payload as the student process writes it, its answer a CB_RETURN
+     * payload. A question asked that is not among them is a callback, or with {@code defer} (for
+     * questions to surfaces and materials) sent back in the reply.
      */
     public static final byte MULTI = 12;
     /**
-     * Student: {@code [int calls]([byte 0][value result][records] | [byte 1][String class]
-     * [String message][int n][String frames])[int u][int used answer]^u)... [String output]}.
+     * Student: {@code [int calls](([byte 0][value result][records] | [byte 1][String class]
+     * [String message][int n][String frames])[int u][int used prediction]^u | [byte 2][int q]
+     * [bytes question]^q)... [String output]}: 2 is a call that asked questions not answered yet,
+     * to be sent again with their answers.
      */
     public static final byte MULTI_RETURN = 13;
 
@@ -94,6 +99,13 @@ public final class Wire {
      */
     public static final byte LIGHT_REF = 17;
 
+    /**
+     * In a MULTI frame's calls (and a record in its reply): the same as the previous call's
+     * argument at the same place (a ray, or a record with the same fields, bit for bit); in a
+     * reply, a record the call left as it was sent.
+     */
+    public static final byte AS_BEFORE = 18;
+
     // Callback operations.
     public static final byte OP_INTERSECT = 1;
     public static final byte OP_INTERSECTS_ANY = 2;
@@ -108,6 +120,16 @@ public final class Wire {
     public static final byte OP_AT_SPECULAR = 11;
 
     private Wire() {
+    }
+
+    /**
+     * Whether a question may come back with its call instead of being asked at once (MULTI): a
+     * question to the grader's surfaces or materials, which their answers alone decide, with no
+     * effect on the grader's side. A shading point's questions are asked as they come.
+     */
+    public static boolean deferrable(byte op) {
+        return op == OP_INTERSECT || op == OP_INTERSECTS_ANY || op == OP_KA || op == OP_DIFFUSE || op == OP_SPECULAR
+                || op == OP_UNLIT;
     }
 
     /** How one side writes and reads the objects that are not plain values (handles, proxies). */
@@ -189,6 +211,14 @@ public final class Wire {
             write(other);
         }
 
+        /** A length and {@code b}. */
+        public void writeBytes(byte[] b) {
+            writeInt(b.length);
+            need(b.length);
+            System.arraycopy(b, 0, buf, n, b.length);
+            n += b.length;
+        }
+
         /** This buffer's bytes, as a key for hash maps. */
         public Key key() {
             return new Key(Arrays.copyOf(buf, n));
@@ -223,9 +253,20 @@ public final class Wire {
             return pos == end;
         }
 
+        /** Bytes not read yet. */
+        public int remaining() {
+            return end - pos;
+        }
+
         public byte readByte() throws IOException {
             need(1);
             return buf[pos++];
+        }
+
+        /** The next byte, not read. */
+        public byte peekByte() throws IOException {
+            need(1);
+            return buf[pos];
         }
 
         public int readInt() throws IOException {
@@ -337,6 +378,42 @@ public final class Wire {
             throw new ProtocolException("frame cut short");
         }
         return new Frame(type, conv, new In(b, 0, b.length));
+    }
+
+    /**
+     * Whether {@code b} may be sent as {@link #AS_BEFORE} after {@code a}: the same ray (bit for
+     * bit), or records with the same fields (t, point, normal, surface, primitive, tests; the
+     * material follows the surface).
+     */
+    public static boolean asBefore(Object a, Object b) {
+        if (a instanceof Ray x && b instanceof Ray y) {
+            return x == y || (sameBits(x.p, y.p) && sameBits(x.d, y.d) && bits(x.tMin) == bits(y.tMin)
+                    && bits(x.tMax) == bits(y.tMax));
+        }
+        return a instanceof IntersectionRecord x && b instanceof IntersectionRecord y && sameRecord(x, y);
+    }
+
+    /** Records with the same fields, bit for bit (the material follows the surface). */
+    public static boolean sameRecord(IntersectionRecord x, IntersectionRecord y) {
+        return bits(x.t) == bits(y.t) && sameBits(x.point, y.point) && sameBits(x.normal, y.normal) && x.surface == y.surface
+                && x.primitive == y.primitive && x.tests == y.tests;
+    }
+
+    /** A copy of a record's fields, its test count included. */
+    public static IntersectionRecord copyRecord(IntersectionRecord r) {
+        IntersectionRecord c = new IntersectionRecord();
+        c.copyFrom(r);
+        c.tests = r.tests;
+        return c;
+    }
+
+    private static long bits(double d) {
+        return Double.doubleToRawLongBits(d);
+    }
+
+    private static boolean sameBits(Vec3 a, Vec3 b) {
+        return a == b || (a != null && b != null && bits(a.x) == bits(b.x) && bits(a.y) == bits(b.y)
+                && bits(a.z) == bits(b.z));
     }
 
     /** Writes a tagged value: plain values here, other objects through {@code refs}. */

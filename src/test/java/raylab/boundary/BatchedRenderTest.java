@@ -24,13 +24,19 @@ import raylab.course.SolutionRegions;
  * Batched renders ({@link Speculation}) give the pixels of a render one call at a time, bit for
  * bit, whatever the student's code does: the reference, and Sphere.intersect variants whose
  * answers differ from the reference's (so predictions fail and pixels are traced again), one of
- * them throwing at some pixels (the same first pixel and message must be reported).
+ * them throwing at some pixels (the same first pixel and message must be reported). The same for
+ * Shadows.isShadowed, whose questions to the scene come back with their calls and are answered in
+ * the next frame ({@link StudentProcess#multi}): shadow rays the lecture's way, code that catches
+ * everything around the question, asks two or twenty questions one after the other, or throws.
  */
 class BatchedRenderTest {
     private static Path dir;
     private static Path standIns;
     private static Path references;
     private static String reference;
+    private static Path shadowStandIns;
+    private static Path shadowReferences;
+    private static String shadowReference;
 
     /** The student's Sphere.intersect, as a change of the reference source. */
     private static String variant(String name) {
@@ -49,22 +55,108 @@ class BatchedRenderTest {
         };
     }
 
+    /** Shadows.isShadowed's body in place of the reference's solution region. */
+    private static String shadowVariant(String name) {
+        String body = switch (name) {
+            case "reference" -> null;
+            // The lecture's way: a fixed offset along the normal, blockers before the light.
+            case "lecture" -> "Vec3 origin = x.plus(n.times(1e-4));\n"
+                    + "return scene.intersectsAny(new Ray(origin, light.position.minus(origin), 0, 1), scratch);";
+            // Catches everything around the question (also what the grader throws through it).
+            case "catchesEverything" -> "Vec3 origin = x.plus(n.times(1e-4));\n"
+                    + "try { return scene.intersectsAny(new Ray(origin, light.position.minus(origin), 0, 1), scratch); }\n"
+                    + "catch (Throwable t) { return false; }";
+            // Two questions one after the other, the second depending on the first's answer.
+            case "asksTwice" -> "Vec3 origin = x.plus(n.times(1e-4));\n"
+                    + "Ray r = new Ray(origin, light.position.minus(origin), 0, 0.5);\n"
+                    + "if (scene.intersectsAny(r, scratch)) { return true; }\n"
+                    + "return scene.intersectsAny(new Ray(r.evaluate(0.5), light.position.minus(r.evaluate(0.5)),"
+                    + " 0, 1), scratch);";
+            // Twenty questions in a row, more than one frame carries back: the last go one at a time.
+            case "asksTwenty" -> "Vec3 origin = x.plus(n.times(1e-4));\n"
+                    + "Vec3 d = light.position.minus(origin);\n"
+                    + "for (int i = 0; i < 20; i++) {\n"
+                    + "  if (scene.intersectsAny(new Ray(origin.plus(d.times(i / 20.0)), d, 0, 1.0 / 20), scratch)) {"
+                    + " return true; }\n}\nreturn false;";
+            // Throws for points right of some line (the render must name the first such pixel).
+            case "throwsOnTheRight" -> "if (x.x > 0.7) { throw new IllegalStateException(\"right of the line\"); }\n"
+                    + "Vec3 origin = x.plus(n.times(1e-4));\n"
+                    + "return scene.intersectsAny(new Ray(origin, light.position.minus(origin), 0, 1), scratch);";
+            default -> throw new IllegalArgumentException(name);
+        };
+        if (body == null) {
+            return shadowReference;
+        }
+        int from = shadowReference.indexOf("// BEGIN SOLUTION shadows");
+        int to = shadowReference.indexOf("// END SOLUTION", from);
+        assertTrue(from > 0 && to > from, "the reference Shadows.java has its solution region");
+        return shadowReference.substring(0, from) + body + "\n" + shadowReference.substring(to + "// END SOLUTION".length());
+    }
+
     @BeforeAll
     static void standIns(@org.junit.jupiter.api.io.TempDir Path tmp) throws Exception {
         dir = tmp;
         Path root = Path.of(System.getProperty("raylab.grade.root", ".")).toAbsolutePath().normalize();
         reference = Files.readString(root.resolve("src/main/java/raylab/surface/Sphere.java"));
-        String starter = SolutionRegions.toStudent("Sphere.java", reference, Set.of());
         standIns = dir.resolve("standins");
-        StandIns.compile(Map.of("raylab/surface/Sphere.java",
-                StandIns.forwarding(starter, "raylab.surface.Sphere", Set.of("intersect"))),
-                StudentProcessTest.classDirs(), standIns);
-        // The predictor: the reference Sphere class alone.
         references = dir.resolve("ref");
-        Path cls = Path.of(raylab.surface.Sphere.class.getProtectionDomain().getCodeSource().getLocation().toURI())
-                .resolve("raylab/surface/Sphere.class");
-        Files.createDirectories(references.resolve("raylab/surface"));
-        Files.copy(cls, references.resolve("raylab/surface/Sphere.class"));
+        prepare(reference, "Sphere.java", "raylab/surface/Sphere", "intersect", raylab.surface.Sphere.class,
+                standIns, references);
+        shadowReference = Files.readString(root.resolve("src/main/java/raylab/shading/Shadows.java"));
+        shadowStandIns = dir.resolve("shadow-standins");
+        shadowReferences = dir.resolve("shadow-ref");
+        prepare(shadowReference, "Shadows.java", "raylab/shading/Shadows", "isShadowed",
+                raylab.shading.Shadows.class, shadowStandIns, shadowReferences);
+    }
+
+    /** Compiles the stand-in of a student class and copies its reference class alone (the predictor). */
+    private static void prepare(String source, String file, String path, String method, Class<?> ref, Path standInDir,
+            Path referenceDir) throws Exception {
+        String starter = SolutionRegions.toStudent(file, source, Set.of());
+        StandIns.compile(Map.of(path + ".java", StandIns.forwarding(starter, path.replace('/', '.'), Set.of(method))),
+                StudentProcessTest.classDirs(), standInDir);
+        Path cls = Path.of(ref.getProtectionDomain().getCodeSource().getLocation().toURI()).resolve(path + ".class");
+        Files.createDirectories(referenceDir.resolve(path).getParent());
+        Files.copy(cls, referenceDir.resolve(path + ".class"));
+    }
+
+    @ParameterizedTest(name = "{0}")
+    @ValueSource(strings = {"reference", "lecture", "catchesEverything", "asksTwice", "asksTwenty", "throwsOnTheRight"})
+    void shadowQuestionsAnsweredLaterGiveThePixelsOfOneCallAtATime(String student) throws Exception {
+        Path studentClasses = dir.resolve("shadows-" + student);
+        StandIns.compile(Map.of("raylab/shading/Shadows.java", shadowVariant(student)), StudentProcessTest.classDirs(),
+                studentClasses);
+        Milestone m = new Milestone("raylab.shading.Shadows", shadowStandIns, shadowReferences, "scenes/shadows.json");
+        Render batched = render(m, "shadows-" + student, studentClasses, true);
+        Render single = render(m, "shadows-" + student, studentClasses, false);
+        assertSameAsOneCallAtATime(student, batched, single);
+        if (!student.equals("throwsOnTheRight")) {
+            assertTrue(batched.log().contains("questions sent back"), () -> "the batched render's counts: "
+                    + batched.log());
+            assertTrue(!batched.log().contains("questions sent back 0,"), () -> "questions came back with their calls: "
+                    + batched.log());
+            // Twenty questions one after the other outlast the frames that carry questions back:
+            // the rest are asked one at a time. The others ask almost none that way (only in the
+            // few pixels a batched render traces one call at a time).
+            java.util.regex.Matcher c = java.util.regex.Pattern
+                    .compile("live callbacks (\\d+), questions sent back (\\d+)").matcher(batched.log());
+            assertTrue(c.find(), () -> "the batched render's counts: " + batched.log());
+            long live = Long.parseLong(c.group(1));
+            long later = Long.parseLong(c.group(2));
+            if (student.equals("asksTwenty")) {
+                assertTrue(live > 0, () -> "questions asked one at a time: " + batched.log());
+            } else {
+                assertTrue(live * 100 < later, () -> "questions asked one at a time, under 1%: " + batched.log());
+            }
+        }
+    }
+
+    /** A milestone's served class, its stand-in and reference classes, and the scene rendered. */
+    private record Milestone(String served, Path standIns, Path references, String scene) {
+    }
+
+    private static Milestone sphere() {
+        return new Milestone("raylab.surface.Sphere", standIns, references, "scenes/spheres.json");
     }
 
     @ParameterizedTest(name = "{0}")
@@ -73,8 +165,13 @@ class BatchedRenderTest {
         Path studentClasses = dir.resolve("student-" + student);
         StandIns.compile(Map.of("raylab/surface/Sphere.java", variant(student)), StudentProcessTest.classDirs(),
                 studentClasses);
-        Render batched = render(student, studentClasses, true);
-        Render single = render(student, studentClasses, false);
+        Render batched = render(sphere(), student, studentClasses, true);
+        Render single = render(sphere(), student, studentClasses, false);
+        assertSameAsOneCallAtATime(student, batched, single);
+    }
+
+    /** The same error line, and without one the same pixels bit for bit; throwsOnTheRight names its pixel. */
+    private static void assertSameAsOneCallAtATime(String student, Render batched, Render single) {
         assertEquals(single.error(), batched.error(), "the error line of the render");
         if (student.equals("throwsOnTheRight")) {
             assertTrue(single.error().contains("while tracing pixel ("), () -> "names the pixel: " + single.error());
@@ -96,11 +193,11 @@ class BatchedRenderTest {
         Path studentClasses = dir.resolve("student-" + student);
         StandIns.compile(Map.of("raylab/surface/Sphere.java", variant(student)), StudentProcessTest.classDirs(),
                 studentClasses);
-        Render batched = render(student, studentClasses, true);
+        Render batched = render(sphere(), student, studentClasses, true);
         Path referenceClasses = dir.resolve("student-reference");
         StandIns.compile(Map.of("raylab/surface/Sphere.java", variant("reference")), StudentProcessTest.classDirs(),
                 referenceClasses);
-        Render single = render("reference", referenceClasses, false);
+        Render single = render(sphere(), "reference", referenceClasses, false);
         assertEquals("", batched.error(), "no error");
         assertTrue(batched.reference() != null, "the batched render of " + student + " leaves the reference image");
         int[] want = pixels(single.png());
@@ -118,10 +215,10 @@ class BatchedRenderTest {
         return im.getRGB(0, 0, im.getWidth(), im.getHeight(), null, 0, im.getWidth());
     }
 
-    private record Render(byte[] raw, String error, byte[] png, byte[] reference) {
+    private record Render(byte[] raw, String error, byte[] png, byte[] reference, String log) {
     }
 
-    private static Render render(String student, Path studentClasses, boolean batched) throws Exception {
+    private static Render render(Milestone m, String student, Path studentClasses, boolean batched) throws Exception {
         Path root = Path.of(System.getProperty("raylab.grade.root", ".")).toAbsolutePath().normalize();
         Path out = dir.resolve(student + (batched ? "-batched" : "-single"));
         Files.createDirectories(out);
@@ -130,25 +227,27 @@ class BatchedRenderTest {
         studentPath.addAll(StudentProcessTest.classDirs());
         Path config = out.resolve("student.properties");
         Remote.writeConfig(config, new StudentProcess.Config(StudentProcess.javaCommand(studentPath, 128,
-                List.of("raylab.surface.Sphere")), null, Set.of("raylab.surface.Sphere"), 60_000, 1));
+                List.of(m.served())), null, Set.of(m.served()), 60_000, 1));
         List<String> cp = new ArrayList<>();
-        cp.add(standIns.toString());
+        cp.add(m.standIns().toString());
         cp.add(System.getProperty("java.class.path"));
         Path png = out.resolve("render.png");
         List<String> cmd = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
                 "-Draylab.boundary=" + config, "-Draylab.boundary.raw=true", "-Djava.awt.headless=true"));
         if (batched) {
-            cmd.add("-Draylab.boundary.references=" + references);
+            cmd.add("-Draylab.boundary.references=" + m.references());
         }
-        // scenes/spheres.json at a quarter of its size: one call at a time is slow.
-        Path scene = out.resolve("spheres.json");
-        String json = Files.readString(root.resolve("scenes/spheres.json"));
+        // The scene at a quarter of its size: one call at a time is slow.
+        Path scene = out.resolve(Path.of(m.scene()).getFileName());
+        String json = Files.readString(root.resolve(m.scene()));
         assertTrue(json.contains("\"width\": 400, \"height\": 300"), "the scene's size as expected");
         Files.writeString(scene, json.replace("\"width\": 400, \"height\": 300", "\"width\": 100, \"height\": 75"));
         cmd.addAll(List.of("-cp", String.join(File.pathSeparator, cp), "raylab.boundary.TrustedRender",
-                scene.toString(), png.toString(), "scenes/spheres.json"));
-        Process p = new ProcessBuilder(cmd).redirectErrorStream(true).redirectOutput(out.resolve("log.txt").toFile())
-                .start();
+                scene.toString(), png.toString(), m.scene()));
+        ProcessBuilder pb = new ProcessBuilder(cmd).redirectErrorStream(true)
+                .redirectOutput(out.resolve("log.txt").toFile());
+        pb.environment().put("RAYLAB_GRADE_TIMES", "1"); // the counts of the batched render
+        Process p = pb.start();
         assertTrue(p.waitFor(300, TimeUnit.SECONDS), "the render finished");
         Path err = Path.of(png + ".err");
         Path raw = Path.of(png + ".raw");
@@ -156,6 +255,7 @@ class BatchedRenderTest {
         return new Render(Files.isRegularFile(raw) ? Files.readAllBytes(raw) : null,
                 Files.isRegularFile(err) ? Files.readString(err, StandardCharsets.UTF_8) : "",
                 Files.isRegularFile(png) ? Files.readAllBytes(png) : null,
-                Files.isRegularFile(ref) ? Files.readAllBytes(ref) : null);
+                Files.isRegularFile(ref) ? Files.readAllBytes(ref) : null,
+                Files.readString(out.resolve("log.txt"), StandardCharsets.UTF_8));
     }
 }
