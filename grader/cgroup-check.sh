@@ -5,7 +5,9 @@
 # the score. Not a test: timing depends on the machine; run it by hand after changing the grader.
 #
 #   grader/cgroup-check.sh [--jar JAR] [--cpu 0.5] [--mem-mb 768] [--runs 1] [--milestone M]...
-#                          [--java-opt OPT]...   (options for the grader JVM, e.g. -Draylab.grade.boundary=false)
+#                          [--java-opt OPT]...   (more options for the grader JVM, e.g. -Draylab.grade.boundary=false)
+#
+# The grader JVM gets the options the platforms' scripts give it (raylab.grade.JvmOptions.GRADER).
 #
 # Needs root and a cgroup file system: cgroup v2 (cpu.max, memory.max, memory.peak) or cgroup v1
 # (cpu.cfs_quota_us, memory.limit_in_bytes, memory.max_usage_in_bytes, cpuacct.usage), written
@@ -19,7 +21,7 @@ cpu=0.5
 mem_mb=768
 runs=1
 milestones=()
-java_opts=()
+java_opts=(-XX:TieredStopAtLevel=1 -XX:+UseSerialGC -Xms64m -Xmn32m)
 while [ $# -gt 0 ]; do
   case "$1" in
     --jar) jar="$2"; shift 2 ;;
@@ -28,7 +30,7 @@ while [ $# -gt 0 ]; do
     --runs) runs="$2"; shift 2 ;;
     --milestone) milestones+=(--milestone "$2"); shift 2 ;;
     --java-opt) java_opts+=("$2"); shift 2 ;;
-    -h|--help) sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,16p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "cgroup-check: unknown option $1 (see --help)" >&2; exit 2 ;;
   esac
 done

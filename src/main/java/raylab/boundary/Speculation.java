@@ -84,10 +84,12 @@ public final class Speculation {
         }
     }
 
-    /** The student's answer to a call: a result and the records after it, or an exception. */
+    /** The student's answer to a call: a result and the records after it, or an exception (records unchanged). */
     private record Answer(Object result, IntersectionRecord[] after, RuntimeException thrown) {
         Object apply(Object[] args) {
-            copyOut(after, args);
+            if (after != null) {
+                copyOut(after, args);
+            }
             if (thrown != null) {
                 throw again(thrown);
             }
@@ -218,17 +220,25 @@ public final class Speculation {
     }
 
     private Guess predict(Wire.Key k, Object self, String cls, String name, Object[] args) {
+        // The call's inputs as they are now (records copied): sent to the student, and its key.
         Object[] before = new Object[args.length];
-        Object[] asked = new Object[args.length];
-        List<StudentProcess.Answered> answers = new ArrayList<>();
-        List<Boolean> pure = new ArrayList<>();
+        Object[] asked = args;
+        List<StudentProcess.Answered> answers = List.of();
+        List<Boolean> pure = List.of();
         for (int i = 0; i < args.length; i++) {
             Object x = args[i];
             before[i] = x instanceof IntersectionRecord r ? copy(r) : x;
             // Only a shading point's questions are answered in advance: their arguments are the
             // call's own (lights, l). A surface's would carry the reference's own rays (its
             // shadow-ray offset) into the student process, so those are asked as they come.
-            asked[i] = x instanceof ShadingPoint at ? noting(at, answers, pure) : x;
+            if (x instanceof ShadingPoint at) {
+                if (asked == args) {
+                    asked = args.clone();
+                    answers = new ArrayList<>();
+                    pure = new ArrayList<>();
+                }
+                asked[i] = noting(at, answers, pure);
+            }
         }
         Object result;
         try {
@@ -265,13 +275,7 @@ public final class Speculation {
             p[i] = pure.get(i);
         }
         predictions++;
-        Object[] sent = before.clone();
-        for (int i = 0; i < sent.length; i++) {
-            if (sent[i] instanceof IntersectionRecord r) {
-                sent[i] = copy(r);
-            }
-        }
-        Guess g = new Guess(k, self, before, new StudentProcess.MultiCall(cls, name, self, sent, answers), result,
+        Guess g = new Guess(k, self, before, new StudentProcess.MultiCall(cls, name, self, before, answers), result,
                 after, p);
         guesses.add(g);
         if (k != null) {
@@ -306,14 +310,8 @@ public final class Speculation {
         }
         for (Guess g : guesses) {
             StudentProcess.MultiCall c = g.call;
-            IntersectionRecord[] after = new IntersectionRecord[c.args.length];
-            for (int i = 0; i < after.length; i++) {
-                if (c.args[i] instanceof IntersectionRecord r) {
-                    after[i] = r;
-                }
-            }
-            g.answer = new Answer(c.result(), after, c.thrown());
-            g.confirmed = c.thrown() == null && same(g.result, c.result()) && sameRecords(g.after, after);
+            g.answer = new Answer(c.result(), c.after(), c.thrown());
+            g.confirmed = c.thrown() == null && same(g.result, c.result()) && sameRecords(g.after, c.after());
         }
         guesses.clear();
         guessed.clear();
@@ -406,21 +404,15 @@ public final class Speculation {
 
     // --- predictors: the milestone's reference, run here ---
 
-    /** The last predictor asked for (names compared by identity: the stand-ins' constants). */
-    private String lastCls;
-    private String lastName;
-    private int lastArity;
-    private Method lastMethod;
+    /** The predictors asked for last. */
+    private final RecentMethods<Method> recentPredictors = new RecentMethods<>();
 
     private Method predictorMethod(String cls, String name, int arity) throws ReflectiveOperationException {
-        if (cls == lastCls && name == lastName && arity == lastArity && lastMethod != null) {
-            return lastMethod;
+        Method m = recentPredictors.get(cls, name, arity);
+        if (m == null) {
+            m = findPredictorMethod(cls, name, arity);
+            recentPredictors.put(cls, name, arity, m);
         }
-        Method m = findPredictorMethod(cls, name, arity);
-        lastCls = cls;
-        lastName = name;
-        lastArity = arity;
-        lastMethod = m;
         return m;
     }
 

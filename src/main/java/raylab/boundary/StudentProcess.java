@@ -208,7 +208,7 @@ public final class StudentProcess implements AutoCloseable {
         handleOf.clear();
         byHandle.clear();
         methodIds.clear();
-        lastId = 0;
+        recentIds.clear();
         stderr = Files.createTempFile("student", ".err");
         ProcessBuilder pb = new ProcessBuilder(config.command()).redirectError(stderr.toFile());
         if (config.directory() != null) {
@@ -335,11 +335,12 @@ public final class StudentProcess implements AutoCloseable {
 
     /**
      * One call of a {@link #multi} frame: the method, its target and arguments (records as they
-     * are before the call; they hold the student's record after it), the callbacks it is expected
-     * to ask with their answers; and after the call its result or exception and which of those
-     * answers it used.
+     * are before the call; not changed by it), the callbacks it is expected to ask with their
+     * answers; and after the call its result or exception, the record arguments as the student's
+     * code left them, and which of those answers it used.
      */
     public static final class MultiCall {
+        private static final int[] NONE = new int[0];
         final String cls;
         final String name;
         final Object target;
@@ -347,9 +348,11 @@ public final class StudentProcess implements AutoCloseable {
         final List<Answered> answers;
         Object result;
         RuntimeException thrown;
-        int[] used = new int[0];
-        /** The grader's answers to questions the call sent back: [question, answer] payloads. */
-        final List<byte[][]> truths = new ArrayList<>();
+        int[] used = NONE;
+        /** After the call: each record argument as the student's code left it (null for other arguments). */
+        IntersectionRecord[] after;
+        /** The grader's answers to questions the call sent back: [question, answer] payloads; null: none. */
+        List<byte[][]> truths;
         /** Whether its questions are asked as callbacks (one of them could not be answered later). */
         boolean live;
 
@@ -373,8 +376,8 @@ public final class StudentProcess implements AutoCloseable {
             return used;
         }
 
-        public Object[] args() {
-            return args;
+        public IntersectionRecord[] after() {
+            return after;
         }
     }
 
@@ -445,8 +448,9 @@ public final class StudentProcess implements AutoCloseable {
                 }
             }
             previous = c.args;
+            int truths = c.truths == null ? 0 : c.truths.size();
             buf.writeInt(c.answers.size());
-            buf.writeInt(c.answers.size() + c.truths.size());
+            buf.writeInt(c.answers.size() + truths);
             for (Answered an : c.answers) {
                 q.reset();
                 q.writeInt(ephemeral(an.target()));
@@ -465,9 +469,9 @@ public final class StudentProcess implements AutoCloseable {
                 }
                 buf.writeBytes(a);
             }
-            for (byte[][] t : c.truths) {
-                buf.writeBytes(t[0]);
-                buf.writeBytes(t[1]);
+            for (int t = 0; t < truths; t++) {
+                buf.writeBytes(c.truths.get(t)[0]);
+                buf.writeBytes(c.truths.get(t)[1]);
             }
         }
         int conv = nextConv++;
@@ -499,14 +503,16 @@ public final class StudentProcess implements AutoCloseable {
             }
             if (status == 0) {
                 c.result = Wire.readValue(in, refs);
-                for (Object x : c.args) {
-                    if (x instanceof IntersectionRecord r) {
+                c.after = new IntersectionRecord[c.args.length];
+                for (int j = 0; j < c.args.length; j++) {
+                    if (c.args[j] instanceof IntersectionRecord r) {
                         byte tag = in.readByte();
+                        // A record left as it was sent is that record (its fields are not changed).
+                        c.after[j] = r;
                         if (tag == Wire.RECORD) {
-                            Wire.readRecordInto(in, r, refs);
-                        } else if (tag == Wire.AS_BEFORE) {
-                            r.material = r.surface == null ? null : r.surface.material(); // as readRecordInto
-                        } else {
+                            c.after[j] = Wire.copyRecord(r);
+                            Wire.readRecordInto(in, c.after[j], refs);
+                        } else if (tag != Wire.AS_BEFORE) {
                             throw new Wire.ProtocolException("bad record tag " + tag);
                         }
                     }
@@ -537,7 +543,12 @@ public final class StudentProcess implements AutoCloseable {
                 deferredQuestions++;
                 if (answer == null) {
                     c.live = true; // asked again as a callback, which reports what went wrong
-                } else if (c.truths.stream().noneMatch(t -> java.util.Arrays.equals(t[0], question))) {
+                    continue;
+                }
+                if (c.truths == null) {
+                    c.truths = new ArrayList<>();
+                }
+                if (c.truths.stream().noneMatch(t -> java.util.Arrays.equals(t[0], question))) {
                     c.truths.add(new byte[][] {question, answer});
                 }
             }
@@ -630,21 +641,15 @@ public final class StudentProcess implements AutoCloseable {
         }
     }
 
-    /** The last method asked for (a render asks for the same one again and again): names by identity. */
-    private String lastCls;
-    private String lastName;
-    private int lastArity;
-    private int lastId;
+    /** The ids of the methods asked for last. */
+    private final RecentMethods<Integer> recentIds = new RecentMethods<>();
 
     private int method(String cls, String name, int arity) throws IOException {
-        if (cls == lastCls && name == lastName && arity == lastArity && lastId != 0) {
-            return lastId;
+        Integer id = recentIds.get(cls, name, arity);
+        if (id == null) {
+            id = methodId(cls, name, arity);
+            recentIds.put(cls, name, arity, id);
         }
-        int id = methodId(cls, name, arity);
-        lastCls = cls;
-        lastName = name;
-        lastArity = arity;
-        lastId = id;
         return id;
     }
 

@@ -93,10 +93,10 @@ public final class BundleCommand implements Callable<Integer> {
             # Build the grader's classes and test list once, into the image. The grader keeps each build
             # folder private (700); student code only sees links to the files it needs, in its own box.
             mkdir -p "$AG/cache" "$AG/source/warmup-submission"
-            (cd "$AG/source" && java -jar raylab.jar grade warmup-submission --out /tmp/raylab-warmup \\
+            (cd "$AG/source" && java JVM_OPTIONS -jar raylab.jar grade warmup-submission --out /tmp/raylab-warmup \\
                 --root "$AG/source" --cache "$AG/cache" --quiet) || true
             chmod 755 "$AG/cache"
-            """;
+            """.replace("JVM_OPTIONS", JvmOptions.graderLine());
 
     static final String RUN = """
             #!/usr/bin/env bash
@@ -104,14 +104,14 @@ public final class BundleCommand implements Callable<Integer> {
             AG="${AUTOGRADER_ROOT:-/autograder}"
             mkdir -p "$AG/results"
             cd "$AG/source" || exit 1
-            java -jar raylab.jar grade "$AG/submission" --out "$AG/results" --root "$AG/source" \\
+            java JVM_OPTIONS -jar raylab.jar grade "$AG/submission" --out "$AG/results" --root "$AG/source" \\
                 --cache "$AG/cache" --quiet
             if [ ! -s "$AG/results/results.json" ]; then
               echo '{"score": 0, "output": "The autograder could not run. Please tell the course staff."}' \\
                 > "$AG/results/results.json"
             fi
             exit 0
-            """;
+            """.replace("JVM_OPTIONS", JvmOptions.graderLine());
 
     @Override
     public Integer call() throws IOException {

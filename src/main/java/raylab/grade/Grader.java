@@ -507,6 +507,7 @@ public final class Grader {
                 // C1 only: at 0.5 CPU, C2's compiler threads cost more than its faster code saves,
                 // even in a render's hundreds of thousands of calls (grader/README.md).
                 "-XX:TieredStopAtLevel=1", "-Dfile.encoding=UTF-8"));
+        cmd.addAll(JvmOptions.student(heapMb));
         cmd.addAll(extraJvmOptions("RAYLAB_STUDENT_JVM_OPTS"));
         cmd.addAll(List.of("-cp", String.join(java.io.File.pathSeparator, box.classPath()),
                 "raylab.remote.StudentServer"));
@@ -583,6 +584,7 @@ public final class Grader {
             TestLauncher.Limits both = new TestLauncher.Limits(Math.max(l.heapMegabytes(),
                     renders == null ? 0 : options.sceneHeapMb()), l.wallClock().multipliedBy(2).plus(sceneLimit)
                     .plusSeconds(renders == null ? 0 : 30), l.perTestSeconds(), l.outputCapBytes());
+            jvm.addAll(JvmOptions.trusted(both.heapMegabytes()));
             jvm.addAll(extraJvmOptions("RAYLAB_TRUSTED_JVM_OPTS"));
             TestLauncher.Outcome o = TestLauncher.runTrusted(cp, setup.tests, classes, both, dir, expected, jvm);
             for (TestResult r : o.results()) {
@@ -992,6 +994,7 @@ public final class Grader {
                 // Quick to start: C1 only (a render of seconds pays C2's compile time back rarely).
                 "-XX:+UseSerialGC", "-XX:TieredStopAtLevel=1",
                 "-Draylab.boundary=" + config));
+        cmd.addAll(JvmOptions.trusted(options.sceneHeapMb()));
         cmd.addAll(extraJvmOptions("RAYLAB_RENDER_JVM_OPTS"));
         cmd.addAll(List.of(
                 // The milestone's reference predicts the student's answers, so that calls go in batches.

@@ -340,6 +340,8 @@ public final class StudentServer {
         }
         Wire.Out results = depth == 1 ? multiResults : new Wire.Out();
         results.reset();
+        List<Integer> usedHere = new ArrayList<>();
+        List<byte[]> deferredHere = new ArrayList<>();
         // An argument sent AS_BEFORE is the previous call's at the same place: the same object, or
         // for a record a new one with the fields that one was sent with.
         Object[] previous = new Object[0];
@@ -382,12 +384,14 @@ public final class StudentServer {
                     of.putIfAbsent(new Wire.Key(in.readBytes()), j);
                     given.add(in.readBytes());
                 }
-                answerOf = of;
+                    answerOf = of;
                 answers = given;
             }
             predicted = k;
-            used = new ArrayList<>();
-            deferred = defer ? new ArrayList<>() : null;
+            used = usedHere;
+            used.clear();
+            deferred = defer ? deferredHere : null;
+            deferredHere.clear();
             int outputMark = captured.size();
             Object result = null;
             Throwable thrown = null;

@@ -276,8 +276,9 @@ public final class GradeAllCommand implements Callable<Integer> {
             Files.createDirectories(dir);
             Files.deleteIfExists(dir.resolve(DONE));
             String digest = digest(submission);
-            List<String> cmd = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
-                    "-cp", System.getProperty("java.class.path"), "raylab.cli.Main", "grade",
+            List<String> cmd = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString()));
+            cmd.addAll(raylab.grade.JvmOptions.GRADER);
+            cmd.addAll(List.of("-cp", System.getProperty("java.class.path"), "raylab.cli.Main", "grade",
                     submission.toAbsolutePath().toString(), "--out", dir.toString(), "--root", r.toString(), "--quiet"));
             if (cache != null) {
                 cmd.addAll(List.of("--cache", cache.toAbsolutePath().toString()));

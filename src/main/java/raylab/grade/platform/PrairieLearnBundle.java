@@ -71,14 +71,14 @@ public final class PrairieLearnBundle {
             cache="${RAYLAB_CACHE:-/tmp/raylab-cache}"
             mkdir -p "$cache" && chmod 755 "$cache"
             out="$(mktemp -d /tmp/raylab-out.XXXXXX)"
-            (cd "$SRC" && java -jar raylab.jar grade "$G/student" --out "$out" --root "$SRC" --cache "$cache" \\
+            (cd "$SRC" && java JVM_OPTIONS -jar raylab.jar grade "$G/student" --out "$out" --root "$SRC" --cache "$cache" \\
                 --quiet --prairielearn "$results" "${args[@]}")
             if [ ! -s "$results" ]; then
               echo '{"gradable": false, "score": 0, "message": "The autograder could not run. You were not charged an attempt; please tell the course staff.", "tests": []}' \\
                 > "$results"
             fi
             exit 0
-            """;
+            """.replace("JVM_OPTIONS", raylab.grade.JvmOptions.graderLine());
 
     public static void write(Path root, Assignments all, Path jar, List<Path> files, Path out, boolean whole, Instant due,
             String image, int timeout) throws IOException {
