@@ -148,7 +148,7 @@ final class PackedOctants {
                 int s = first;
                 if (kz == 2) {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 0, 1, 2, shx, shy, shz, pkx, pky, pkz);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 0, 1, 2, shx, shy, shz, pkx, pky, pkz, ray);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -158,6 +158,9 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
+                            ray[PackedWide.B0] = ray[PackedWide.H0];
+                            ray[PackedWide.B1] = ray[PackedWide.H1];
+                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;
@@ -166,7 +169,7 @@ final class PackedOctants {
                     }
                 } else if (kz == 1) {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 2, 0, 1, shx, shy, shz, pkx, pky, pkz);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 2, 0, 1, shx, shy, shz, pkx, pky, pkz, ray);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -176,6 +179,9 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
+                            ray[PackedWide.B0] = ray[PackedWide.H0];
+                            ray[PackedWide.B1] = ray[PackedWide.H1];
+                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;
@@ -184,7 +190,7 @@ final class PackedOctants {
                     }
                 } else {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 1, 2, 0, shx, shy, shz, pkx, pky, pkz);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 1, 2, 0, shx, shy, shz, pkx, pky, pkz, ray);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -194,6 +200,9 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
+                            ray[PackedWide.B0] = ray[PackedWide.H0];
+                            ray[PackedWide.B1] = ray[PackedWide.H1];
+                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;
@@ -309,7 +318,7 @@ final class PackedOctants {
                 int s = first;
                 if (kz == 2) {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 0, 1, 2, shx, shy, shz, pkx, pky, pkz);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 0, 1, 2, shx, shy, shz, pkx, pky, pkz, ray);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -319,6 +328,9 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
+                            ray[PackedWide.B0] = ray[PackedWide.H0];
+                            ray[PackedWide.B1] = ray[PackedWide.H1];
+                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;
@@ -327,7 +339,7 @@ final class PackedOctants {
                     }
                 } else if (kz == 1) {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 2, 0, 1, shx, shy, shz, pkx, pky, pkz);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 2, 0, 1, shx, shy, shz, pkx, pky, pkz, ray);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -337,6 +349,9 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
+                            ray[PackedWide.B0] = ray[PackedWide.H0];
+                            ray[PackedWide.B1] = ray[PackedWide.H1];
+                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;
@@ -345,7 +360,7 @@ final class PackedOctants {
                     }
                 } else {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 1, 2, 0, shx, shy, shz, pkx, pky, pkz);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 1, 2, 0, shx, shy, shz, pkx, pky, pkz, ray);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -355,6 +370,9 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
+                            ray[PackedWide.B0] = ray[PackedWide.H0];
+                            ray[PackedWide.B1] = ray[PackedWide.H1];
+                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;
@@ -470,7 +488,7 @@ final class PackedOctants {
                 int s = first;
                 if (kz == 2) {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 0, 1, 2, shx, shy, shz, pkx, pky, pkz);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 0, 1, 2, shx, shy, shz, pkx, pky, pkz, ray);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -480,6 +498,9 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
+                            ray[PackedWide.B0] = ray[PackedWide.H0];
+                            ray[PackedWide.B1] = ray[PackedWide.H1];
+                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;
@@ -488,7 +509,7 @@ final class PackedOctants {
                     }
                 } else if (kz == 1) {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 2, 0, 1, shx, shy, shz, pkx, pky, pkz);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 2, 0, 1, shx, shy, shz, pkx, pky, pkz, ray);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -498,6 +519,9 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
+                            ray[PackedWide.B0] = ray[PackedWide.H0];
+                            ray[PackedWide.B1] = ray[PackedWide.H1];
+                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;
@@ -506,7 +530,7 @@ final class PackedOctants {
                     }
                 } else {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 1, 2, 0, shx, shy, shz, pkx, pky, pkz);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 1, 2, 0, shx, shy, shz, pkx, pky, pkz, ray);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -516,6 +540,9 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
+                            ray[PackedWide.B0] = ray[PackedWide.H0];
+                            ray[PackedWide.B1] = ray[PackedWide.H1];
+                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;
@@ -631,7 +658,7 @@ final class PackedOctants {
                 int s = first;
                 if (kz == 2) {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 0, 1, 2, shx, shy, shz, pkx, pky, pkz);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 0, 1, 2, shx, shy, shz, pkx, pky, pkz, ray);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -641,6 +668,9 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
+                            ray[PackedWide.B0] = ray[PackedWide.H0];
+                            ray[PackedWide.B1] = ray[PackedWide.H1];
+                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;
@@ -649,7 +679,7 @@ final class PackedOctants {
                     }
                 } else if (kz == 1) {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 2, 0, 1, shx, shy, shz, pkx, pky, pkz);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 2, 0, 1, shx, shy, shz, pkx, pky, pkz, ray);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -659,6 +689,9 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
+                            ray[PackedWide.B0] = ray[PackedWide.H0];
+                            ray[PackedWide.B1] = ray[PackedWide.H1];
+                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;
@@ -667,7 +700,7 @@ final class PackedOctants {
                     }
                 } else {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 1, 2, 0, shx, shy, shz, pkx, pky, pkz);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 1, 2, 0, shx, shy, shz, pkx, pky, pkz, ray);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -677,6 +710,9 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
+                            ray[PackedWide.B0] = ray[PackedWide.H0];
+                            ray[PackedWide.B1] = ray[PackedWide.H1];
+                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;
@@ -792,7 +828,7 @@ final class PackedOctants {
                 int s = first;
                 if (kz == 2) {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 0, 1, 2, shx, shy, shz, pkx, pky, pkz);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 0, 1, 2, shx, shy, shz, pkx, pky, pkz, ray);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -802,6 +838,9 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
+                            ray[PackedWide.B0] = ray[PackedWide.H0];
+                            ray[PackedWide.B1] = ray[PackedWide.H1];
+                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;
@@ -810,7 +849,7 @@ final class PackedOctants {
                     }
                 } else if (kz == 1) {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 2, 0, 1, shx, shy, shz, pkx, pky, pkz);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 2, 0, 1, shx, shy, shz, pkx, pky, pkz, ray);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -820,6 +859,9 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
+                            ray[PackedWide.B0] = ray[PackedWide.H0];
+                            ray[PackedWide.B1] = ray[PackedWide.H1];
+                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;
@@ -828,7 +870,7 @@ final class PackedOctants {
                     }
                 } else {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 1, 2, 0, shx, shy, shz, pkx, pky, pkz);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 1, 2, 0, shx, shy, shz, pkx, pky, pkz, ray);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -838,6 +880,9 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
+                            ray[PackedWide.B0] = ray[PackedWide.H0];
+                            ray[PackedWide.B1] = ray[PackedWide.H1];
+                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;
@@ -953,7 +998,7 @@ final class PackedOctants {
                 int s = first;
                 if (kz == 2) {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 0, 1, 2, shx, shy, shz, pkx, pky, pkz);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 0, 1, 2, shx, shy, shz, pkx, pky, pkz, ray);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -963,6 +1008,9 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
+                            ray[PackedWide.B0] = ray[PackedWide.H0];
+                            ray[PackedWide.B1] = ray[PackedWide.H1];
+                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;
@@ -971,7 +1019,7 @@ final class PackedOctants {
                     }
                 } else if (kz == 1) {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 2, 0, 1, shx, shy, shz, pkx, pky, pkz);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 2, 0, 1, shx, shy, shz, pkx, pky, pkz, ray);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -981,6 +1029,9 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
+                            ray[PackedWide.B0] = ray[PackedWide.H0];
+                            ray[PackedWide.B1] = ray[PackedWide.H1];
+                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;
@@ -989,7 +1040,7 @@ final class PackedOctants {
                     }
                 } else {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 1, 2, 0, shx, shy, shz, pkx, pky, pkz);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 1, 2, 0, shx, shy, shz, pkx, pky, pkz, ray);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -999,6 +1050,9 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
+                            ray[PackedWide.B0] = ray[PackedWide.H0];
+                            ray[PackedWide.B1] = ray[PackedWide.H1];
+                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;
@@ -1114,7 +1168,7 @@ final class PackedOctants {
                 int s = first;
                 if (kz == 2) {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 0, 1, 2, shx, shy, shz, pkx, pky, pkz);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 0, 1, 2, shx, shy, shz, pkx, pky, pkz, ray);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -1124,6 +1178,9 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
+                            ray[PackedWide.B0] = ray[PackedWide.H0];
+                            ray[PackedWide.B1] = ray[PackedWide.H1];
+                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;
@@ -1132,7 +1189,7 @@ final class PackedOctants {
                     }
                 } else if (kz == 1) {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 2, 0, 1, shx, shy, shz, pkx, pky, pkz);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 2, 0, 1, shx, shy, shz, pkx, pky, pkz, ray);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -1142,6 +1199,9 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
+                            ray[PackedWide.B0] = ray[PackedWide.H0];
+                            ray[PackedWide.B1] = ray[PackedWide.H1];
+                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;
@@ -1150,7 +1210,7 @@ final class PackedOctants {
                     }
                 } else {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 1, 2, 0, shx, shy, shz, pkx, pky, pkz);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 1, 2, 0, shx, shy, shz, pkx, pky, pkz, ray);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -1160,6 +1220,9 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
+                            ray[PackedWide.B0] = ray[PackedWide.H0];
+                            ray[PackedWide.B1] = ray[PackedWide.H1];
+                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;
@@ -1275,7 +1338,7 @@ final class PackedOctants {
                 int s = first;
                 if (kz == 2) {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 0, 1, 2, shx, shy, shz, pkx, pky, pkz);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 0, 1, 2, shx, shy, shz, pkx, pky, pkz, ray);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -1285,6 +1348,9 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
+                            ray[PackedWide.B0] = ray[PackedWide.H0];
+                            ray[PackedWide.B1] = ray[PackedWide.H1];
+                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;
@@ -1293,7 +1359,7 @@ final class PackedOctants {
                     }
                 } else if (kz == 1) {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 2, 0, 1, shx, shy, shz, pkx, pky, pkz);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 2, 0, 1, shx, shy, shz, pkx, pky, pkz, ray);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -1303,6 +1369,9 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
+                            ray[PackedWide.B0] = ray[PackedWide.H0];
+                            ray[PackedWide.B1] = ray[PackedWide.H1];
+                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;
@@ -1311,7 +1380,7 @@ final class PackedOctants {
                     }
                 } else {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 1, 2, 0, shx, shy, shz, pkx, pky, pkz);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 1, 2, 0, shx, shy, shz, pkx, pky, pkz, ray);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -1321,6 +1390,9 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
+                            ray[PackedWide.B0] = ray[PackedWide.H0];
+                            ray[PackedWide.B1] = ray[PackedWide.H1];
+                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;
