@@ -51,7 +51,7 @@ final class BvhNodes {
         /** Pending children of the packed engine's 4-wide traversal: entry bits << 32 | reference. */
         long[] pending = new long[256];
         /** The ray of the packed engine's 4-wide traversal, for its leaf test (instructor-only). */
-        final double[] ray = new double[PackedWide.RAY];
+        final double[] ray = new double[16];
         int top;
     }
 

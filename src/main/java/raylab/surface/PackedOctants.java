@@ -148,7 +148,7 @@ final class PackedOctants {
                 int s = first;
                 if (kz == 2) {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 0, 1, 2, shx, shy, shz, pkx, pky, pkz, ray);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 0, 1, 2, shx, shy, shz, pkx, pky, pkz);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -158,9 +158,6 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
-                            ray[PackedWide.B0] = ray[PackedWide.H0];
-                            ray[PackedWide.B1] = ray[PackedWide.H1];
-                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;
@@ -169,7 +166,7 @@ final class PackedOctants {
                     }
                 } else if (kz == 1) {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 2, 0, 1, shx, shy, shz, pkx, pky, pkz, ray);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 2, 0, 1, shx, shy, shz, pkx, pky, pkz);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -179,9 +176,6 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
-                            ray[PackedWide.B0] = ray[PackedWide.H0];
-                            ray[PackedWide.B1] = ray[PackedWide.H1];
-                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;
@@ -190,7 +184,7 @@ final class PackedOctants {
                     }
                 } else {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 1, 2, 0, shx, shy, shz, pkx, pky, pkz, ray);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 1, 2, 0, shx, shy, shz, pkx, pky, pkz);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -200,9 +194,6 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
-                            ray[PackedWide.B0] = ray[PackedWide.H0];
-                            ray[PackedWide.B1] = ray[PackedWide.H1];
-                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;
@@ -318,7 +309,7 @@ final class PackedOctants {
                 int s = first;
                 if (kz == 2) {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 0, 1, 2, shx, shy, shz, pkx, pky, pkz, ray);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 0, 1, 2, shx, shy, shz, pkx, pky, pkz);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -328,9 +319,6 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
-                            ray[PackedWide.B0] = ray[PackedWide.H0];
-                            ray[PackedWide.B1] = ray[PackedWide.H1];
-                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;
@@ -339,7 +327,7 @@ final class PackedOctants {
                     }
                 } else if (kz == 1) {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 2, 0, 1, shx, shy, shz, pkx, pky, pkz, ray);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 2, 0, 1, shx, shy, shz, pkx, pky, pkz);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -349,9 +337,6 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
-                            ray[PackedWide.B0] = ray[PackedWide.H0];
-                            ray[PackedWide.B1] = ray[PackedWide.H1];
-                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;
@@ -360,7 +345,7 @@ final class PackedOctants {
                     }
                 } else {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 1, 2, 0, shx, shy, shz, pkx, pky, pkz, ray);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 1, 2, 0, shx, shy, shz, pkx, pky, pkz);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -370,9 +355,6 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
-                            ray[PackedWide.B0] = ray[PackedWide.H0];
-                            ray[PackedWide.B1] = ray[PackedWide.H1];
-                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;
@@ -488,7 +470,7 @@ final class PackedOctants {
                 int s = first;
                 if (kz == 2) {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 0, 1, 2, shx, shy, shz, pkx, pky, pkz, ray);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 0, 1, 2, shx, shy, shz, pkx, pky, pkz);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -498,9 +480,6 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
-                            ray[PackedWide.B0] = ray[PackedWide.H0];
-                            ray[PackedWide.B1] = ray[PackedWide.H1];
-                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;
@@ -509,7 +488,7 @@ final class PackedOctants {
                     }
                 } else if (kz == 1) {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 2, 0, 1, shx, shy, shz, pkx, pky, pkz, ray);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 2, 0, 1, shx, shy, shz, pkx, pky, pkz);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -519,9 +498,6 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
-                            ray[PackedWide.B0] = ray[PackedWide.H0];
-                            ray[PackedWide.B1] = ray[PackedWide.H1];
-                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;
@@ -530,7 +506,7 @@ final class PackedOctants {
                     }
                 } else {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 1, 2, 0, shx, shy, shz, pkx, pky, pkz, ray);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 1, 2, 0, shx, shy, shz, pkx, pky, pkz);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -540,9 +516,6 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
-                            ray[PackedWide.B0] = ray[PackedWide.H0];
-                            ray[PackedWide.B1] = ray[PackedWide.H1];
-                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;
@@ -658,7 +631,7 @@ final class PackedOctants {
                 int s = first;
                 if (kz == 2) {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 0, 1, 2, shx, shy, shz, pkx, pky, pkz, ray);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 0, 1, 2, shx, shy, shz, pkx, pky, pkz);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -668,9 +641,6 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
-                            ray[PackedWide.B0] = ray[PackedWide.H0];
-                            ray[PackedWide.B1] = ray[PackedWide.H1];
-                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;
@@ -679,7 +649,7 @@ final class PackedOctants {
                     }
                 } else if (kz == 1) {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 2, 0, 1, shx, shy, shz, pkx, pky, pkz, ray);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 2, 0, 1, shx, shy, shz, pkx, pky, pkz);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -689,9 +659,6 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
-                            ray[PackedWide.B0] = ray[PackedWide.H0];
-                            ray[PackedWide.B1] = ray[PackedWide.H1];
-                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;
@@ -700,7 +667,7 @@ final class PackedOctants {
                     }
                 } else {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 1, 2, 0, shx, shy, shz, pkx, pky, pkz, ray);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 1, 2, 0, shx, shy, shz, pkx, pky, pkz);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -710,9 +677,6 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
-                            ray[PackedWide.B0] = ray[PackedWide.H0];
-                            ray[PackedWide.B1] = ray[PackedWide.H1];
-                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;
@@ -828,7 +792,7 @@ final class PackedOctants {
                 int s = first;
                 if (kz == 2) {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 0, 1, 2, shx, shy, shz, pkx, pky, pkz, ray);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 0, 1, 2, shx, shy, shz, pkx, pky, pkz);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -838,9 +802,6 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
-                            ray[PackedWide.B0] = ray[PackedWide.H0];
-                            ray[PackedWide.B1] = ray[PackedWide.H1];
-                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;
@@ -849,7 +810,7 @@ final class PackedOctants {
                     }
                 } else if (kz == 1) {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 2, 0, 1, shx, shy, shz, pkx, pky, pkz, ray);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 2, 0, 1, shx, shy, shz, pkx, pky, pkz);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -859,9 +820,6 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
-                            ray[PackedWide.B0] = ray[PackedWide.H0];
-                            ray[PackedWide.B1] = ray[PackedWide.H1];
-                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;
@@ -870,7 +828,7 @@ final class PackedOctants {
                     }
                 } else {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 1, 2, 0, shx, shy, shz, pkx, pky, pkz, ray);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 1, 2, 0, shx, shy, shz, pkx, pky, pkz);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -880,9 +838,6 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
-                            ray[PackedWide.B0] = ray[PackedWide.H0];
-                            ray[PackedWide.B1] = ray[PackedWide.H1];
-                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;
@@ -998,7 +953,7 @@ final class PackedOctants {
                 int s = first;
                 if (kz == 2) {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 0, 1, 2, shx, shy, shz, pkx, pky, pkz, ray);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 0, 1, 2, shx, shy, shz, pkx, pky, pkz);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -1008,9 +963,6 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
-                            ray[PackedWide.B0] = ray[PackedWide.H0];
-                            ray[PackedWide.B1] = ray[PackedWide.H1];
-                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;
@@ -1019,7 +971,7 @@ final class PackedOctants {
                     }
                 } else if (kz == 1) {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 2, 0, 1, shx, shy, shz, pkx, pky, pkz, ray);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 2, 0, 1, shx, shy, shz, pkx, pky, pkz);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -1029,9 +981,6 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
-                            ray[PackedWide.B0] = ray[PackedWide.H0];
-                            ray[PackedWide.B1] = ray[PackedWide.H1];
-                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;
@@ -1040,7 +989,7 @@ final class PackedOctants {
                     }
                 } else {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 1, 2, 0, shx, shy, shz, pkx, pky, pkz, ray);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 1, 2, 0, shx, shy, shz, pkx, pky, pkz);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -1050,9 +999,6 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
-                            ray[PackedWide.B0] = ray[PackedWide.H0];
-                            ray[PackedWide.B1] = ray[PackedWide.H1];
-                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;
@@ -1168,7 +1114,7 @@ final class PackedOctants {
                 int s = first;
                 if (kz == 2) {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 0, 1, 2, shx, shy, shz, pkx, pky, pkz, ray);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 0, 1, 2, shx, shy, shz, pkx, pky, pkz);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -1178,9 +1124,6 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
-                            ray[PackedWide.B0] = ray[PackedWide.H0];
-                            ray[PackedWide.B1] = ray[PackedWide.H1];
-                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;
@@ -1189,7 +1132,7 @@ final class PackedOctants {
                     }
                 } else if (kz == 1) {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 2, 0, 1, shx, shy, shz, pkx, pky, pkz, ray);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 2, 0, 1, shx, shy, shz, pkx, pky, pkz);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -1199,9 +1142,6 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
-                            ray[PackedWide.B0] = ray[PackedWide.H0];
-                            ray[PackedWide.B1] = ray[PackedWide.H1];
-                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;
@@ -1210,7 +1150,7 @@ final class PackedOctants {
                     }
                 } else {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 1, 2, 0, shx, shy, shz, pkx, pky, pkz, ray);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 1, 2, 0, shx, shy, shz, pkx, pky, pkz);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -1220,9 +1160,6 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
-                            ray[PackedWide.B0] = ray[PackedWide.H0];
-                            ray[PackedWide.B1] = ray[PackedWide.H1];
-                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;
@@ -1338,7 +1275,7 @@ final class PackedOctants {
                 int s = first;
                 if (kz == 2) {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 0, 1, 2, shx, shy, shz, pkx, pky, pkz, ray);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 0, 1, 2, shx, shy, shz, pkx, pky, pkz);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -1348,9 +1285,6 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
-                            ray[PackedWide.B0] = ray[PackedWide.H0];
-                            ray[PackedWide.B1] = ray[PackedWide.H1];
-                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;
@@ -1359,7 +1293,7 @@ final class PackedOctants {
                     }
                 } else if (kz == 1) {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 2, 0, 1, shx, shy, shz, pkx, pky, pkz, ray);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 2, 0, 1, shx, shy, shz, pkx, pky, pkz);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -1369,9 +1303,6 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
-                            ray[PackedWide.B0] = ray[PackedWide.H0];
-                            ray[PackedWide.B1] = ray[PackedWide.H1];
-                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;
@@ -1380,7 +1311,7 @@ final class PackedOctants {
                     }
                 } else {
                     for (; s < end; s++) {
-                        double t = PackedTriangles.hitT(tri, 9 * s, 1, 2, 0, shx, shy, shz, pkx, pky, pkz, ray);
+                        double t = PackedTriangles.hitT(tri, 9 * s, 1, 2, 0, shx, shy, shz, pkx, pky, pkz);
                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -1390,9 +1321,6 @@ final class PackedOctants {
                         if (t >= tMin && t <= tMax && t < best) {
                             best = t;
                             found = s;
-                            ray[PackedWide.B0] = ray[PackedWide.H0];
-                            ray[PackedWide.B1] = ray[PackedWide.H1];
-                            ray[PackedWide.B2] = ray[PackedWide.H2];
                             if (anyHit) {
                                 s++;
                                 break;

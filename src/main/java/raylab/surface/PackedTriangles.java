@@ -149,7 +149,8 @@ final class PackedTriangles implements Mesh.Engine {
         r[PackedWide.TESTS] = 0;
         int slot = PackedOctants.trace(octant, wide, tree.leaf, tri, frames.pending, r, kz, onx, ony, onz, ofx,
                 ofy, ofz, mx, my, mz, anyHit);
-        return finish(rec, anyHit, r[PackedWide.BEST], slot, (int) r[PackedWide.TESTS], r);
+        return finish(rec, anyHit, r[PackedWide.BEST], slot, (int) r[PackedWide.TESTS], kx, ky, kz, shx, shy, shz, pkx,
+                pky, pkz);
     }
 
     /** Whether the float traversal's bounds hold for this ray (NaN fails every comparison). */
@@ -164,8 +165,8 @@ final class PackedTriangles implements Mesh.Engine {
         return t + Math.abs(t) * (BvhNodes.ROUND_UP - 1);
     }
 
-    /** The record of the hit at leaf slot bestSlot (barycentric coordinates in bary[B0 ..]), if any. */
-    private boolean finish(IntersectionRecord rec, boolean anyHit, double best, int bestSlot, int tests, double[] bary) {
+    private boolean finish(IntersectionRecord rec, boolean anyHit, double best, int bestSlot, int tests, int kx,
+            int ky, int kz, double sx, double sy, double sz, double pkx, double pky, double pkz) {
         rec.tests += tests;
         if (bestSlot < 0) {
             return false;
@@ -180,7 +181,7 @@ final class PackedTriangles implements Mesh.Engine {
             rec.primitive = tree.order[bestSlot];
             return true;
         }
-        record(rec, best, bestSlot, bary[PackedWide.B0], bary[PackedWide.B1], bary[PackedWide.B2]);
+        record(rec, best, bestSlot, kx, ky, kz, sx, sy, sz, pkx, pky, pkz);
         return true;
     }
 
@@ -226,7 +227,6 @@ final class PackedTriangles implements Mesh.Engine {
         BvhNodes.ensure(frames, frames.top + tree.depth + 1);
         final int[] refs = frames.refs;
         final double[] entries = frames.entry;
-        final double[] bary = frames.ray;
         final int base = frames.top;
         int top = base;
         int ref = tree.rootRef;
@@ -239,7 +239,7 @@ final class PackedTriangles implements Mesh.Engine {
                 int end = leaf[l] + leaf[l + 1];
                 for (int s = leaf[l]; s < end; s++) {
                     tests++;
-                    double t = hitT(tri, 9 * s, kx, ky, kz, sx, sy, sz, pkx, pky, pkz, bary);
+                    double t = hitT(tri, 9 * s, kx, ky, kz, sx, sy, sz, pkx, pky, pkz);
                     if (t == t) { // a hit (not NaN): the plane rule
                         t = planeRule(t, tri, 9 * s, px, py, pz);
                     }
@@ -248,9 +248,6 @@ final class PackedTriangles implements Mesh.Engine {
                         best = t;
                         t1 = widen(t);
                         bestSlot = s;
-                        bary[PackedWide.B0] = bary[PackedWide.H0];
-                        bary[PackedWide.B1] = bary[PackedWide.H1];
-                        bary[PackedWide.B2] = bary[PackedWide.H2];
                         if (anyHit) {
                             break traversal;
                         }
@@ -290,7 +287,7 @@ final class PackedTriangles implements Mesh.Engine {
                 }
             }
         }
-        return finish(rec, anyHit, best, bestSlot, tests, bary);
+        return finish(rec, anyHit, best, bestSlot, tests, kx, ky, kz, sx, sy, sz, pkx, pky, pkz);
     }
 
     private static int largestAxis(double dx, double dy, double dz) {
@@ -304,11 +301,10 @@ final class PackedTriangles implements Mesh.Engine {
      * The packed kernel: the watertight test of Triangle.intersect on the triangle at
      * {@code tri[o .. o + 9)}, for a ray already in ray space (axes kx, ky, kz, shear sx, sy, sz,
      * origin components pkx, pky, pkz). Returns t, or NaN when the ray misses the triangle or lies
-     * in its plane; on a hit, its barycentric coordinates e/det go to {@code bary[PackedWide.H0 ..]}
-     * (for the record, so that it need not compute them again). Range checks are the caller's.
+     * in its plane. Range checks are the caller's.
      */
     static double hitT(double[] tri, int o, int kx, int ky, int kz, double sx, double sy, double sz,
-            double pkx, double pky, double pkz, double[] bary) {
+            double pkx, double pky, double pkz) {
         double az = tri[o + kz] - pkz;
         double ax = tri[o + kx] - pkx + sx * az;
         double ay = tri[o + ky] - pky + sy * az;
@@ -332,13 +328,8 @@ final class PackedTriangles implements Mesh.Engine {
         if (det == 0) {
             return Double.NaN;
         }
-        double b0 = e0 / det;
-        double b1 = e1 / det;
-        double b2 = e2 / det;
-        bary[PackedWide.H0] = b0;
-        bary[PackedWide.H1] = b1;
-        bary[PackedWide.H2] = b2;
-        return b0 * (sz * az) + b1 * (sz * bz) + b2 * (sz * cz);
+        double t = e0 / det * (sz * az) + e1 / det * (sz * bz) + e2 / det * (sz * cz);
+        return t;
     }
 
     /**
@@ -382,12 +373,26 @@ final class PackedTriangles implements Mesh.Engine {
 
     private static final double GAMMA8 = 8 * 0x1p-53 / (1 - 8 * 0x1p-53);
 
-    /**
-     * Writes the hit on the triangle at leaf slot s to the record, as Triangle.intersect does, from
-     * its barycentric coordinates b0, b1, b2 (e/det, as the leaf test computed them).
-     */
-    private void record(IntersectionRecord rec, double t, int s, double b0, double b1, double b2) {
+    /** Writes the hit on the triangle at leaf slot s to the record, as Triangle.intersect does. */
+    private void record(IntersectionRecord rec, double t, int s, int kx, int ky, int kz, double sx,
+            double sy, double sz, double pkx, double pky, double pkz) {
         int o = 9 * s;
+        double az = tri[o + kz] - pkz;
+        double ax = tri[o + kx] - pkx + sx * az;
+        double ay = tri[o + ky] - pky + sy * az;
+        double bz = tri[o + 3 + kz] - pkz;
+        double bx = tri[o + 3 + kx] - pkx + sx * bz;
+        double by = tri[o + 3 + ky] - pky + sy * bz;
+        double cz = tri[o + 6 + kz] - pkz;
+        double cx = tri[o + 6 + kx] - pkx + sx * cz;
+        double cy = tri[o + 6 + ky] - pky + sy * cz;
+        double e0 = differenceOfProducts(bx, cy, by, cx);
+        double e1 = differenceOfProducts(cx, ay, cy, ax);
+        double e2 = differenceOfProducts(ax, by, ay, bx);
+        double det = e0 + e1 + e2;
+        double b0 = e0 / det;
+        double b1 = e1 / det;
+        double b2 = e2 / det;
         // x = a·b0 + b·b1 + c·b2 and n = (b − a) × (c − a) / ‖…‖, in Vec3's order of operations.
         Vec3 x = new Vec3(tri[o] * b0 + tri[o + 3] * b1 + tri[o + 6] * b2,
                 tri[o + 1] * b0 + tri[o + 4] * b1 + tri[o + 7] * b2,

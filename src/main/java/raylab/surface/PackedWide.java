@@ -195,11 +195,10 @@ final class PackedWide {
     /**
      * Slots of the per-thread ray array of the leaf test ({@link PackedOctants}): origin, tMin, tMax,
      * the closest hit so far, the shear and the origin in ray space (as {@link Triangle#intersect}), the
-     * count of triangle tests; the barycentric coordinates e/det of the last triangle hit
-     * ({@link PackedTriangles#hitT} writes them) and of the closest hit kept (for its record).
+     * count of triangle tests.
      */
     static final int PX = 0, PY = 1, PZ = 2, TMIN = 3, TMAX = 4, BEST = 5, SHX = 6, SHY = 7, SHZ = 8, PKX = 9,
-            PKY = 10, PKZ = 11, TESTS = 12, H0 = 13, H1 = 14, H2 = 15, B0 = 16, B1 = 17, B2 = 18, RAY = 19;
+            PKY = 10, PKZ = 11, TESTS = 12, RAY = 13;
 
     /**
      * A float strictly below q (an origin coordinate, |q| ≤ 2⁶⁰): q lowered by 2⁻²²·|q| + 2⁻¹⁴⁰ in

@@ -190,7 +190,7 @@ public final class OctantTraversalSource {
     static String leafLoop(int kx, int ky, int kz) {
         return String.format("""
                                     for (; s < end; s++) {
-                                        double t = PackedTriangles.hitT(tri, 9 * s, %d, %d, %d, shx, shy, shz, pkx, pky, pkz, ray);
+                                        double t = PackedTriangles.hitT(tri, 9 * s, %d, %d, %d, shx, shy, shz, pkx, pky, pkz);
                                         // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
                                         // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
                                         if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
@@ -200,9 +200,6 @@ public final class OctantTraversalSource {
                                         if (t >= tMin && t <= tMax && t < best) {
                                             best = t;
                                             found = s;
-                                            ray[PackedWide.B0] = ray[PackedWide.H0];
-                                            ray[PackedWide.B1] = ray[PackedWide.H1];
-                                            ray[PackedWide.B2] = ray[PackedWide.H2];
                                             if (anyHit) {
                                                 s++;
                                                 break;
