@@ -81,10 +81,14 @@ final class PackedOctants {
                 int next = 0;
                 if (count > 3) {
                     int b = k + (order >>> 6 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits((onx - node[b]) * mx), Float.floatToRawIntBits((ony - node[b + 8]) * my)),
-                            Float.floatToRawIntBits((onz - node[b + 16]) * mz));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits((ofx - node[b + 4]) * mx), Float.floatToRawIntBits((ofy - node[b + 12]) * my)),
-                                Math.min(Float.floatToRawIntBits((ofz - node[b + 20]) * mz), t1)) + PackedWide.K;
+                    int nx = Float.floatToRawIntBits((onx - node[b]) * mx);
+                    int fx = Float.floatToRawIntBits((ofx - node[b + 4]) * mx);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 8]) * my);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 12]) * my);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 16]) * mz);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
                     if (in <= out) {
                         int r = Float.floatToRawIntBits(node[b + 24]);
                         stack[top++] = (long) in << 32 | (r & 0xffffffffL);
@@ -93,10 +97,14 @@ final class PackedOctants {
                 }
                 if (count > 2) {
                     int b = k + (order >>> 4 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits((onx - node[b]) * mx), Float.floatToRawIntBits((ony - node[b + 8]) * my)),
-                            Float.floatToRawIntBits((onz - node[b + 16]) * mz));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits((ofx - node[b + 4]) * mx), Float.floatToRawIntBits((ofy - node[b + 12]) * my)),
-                                Math.min(Float.floatToRawIntBits((ofz - node[b + 20]) * mz), t1)) + PackedWide.K;
+                    int nx = Float.floatToRawIntBits((onx - node[b]) * mx);
+                    int fx = Float.floatToRawIntBits((ofx - node[b + 4]) * mx);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 8]) * my);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 12]) * my);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 16]) * mz);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
                     if (in <= out) {
                         int r = Float.floatToRawIntBits(node[b + 24]);
                         stack[top++] = (long) in << 32 | (r & 0xffffffffL);
@@ -105,10 +113,14 @@ final class PackedOctants {
                 }
                 {
                     int b = k + (order >>> 2 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits((onx - node[b]) * mx), Float.floatToRawIntBits((ony - node[b + 8]) * my)),
-                            Float.floatToRawIntBits((onz - node[b + 16]) * mz));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits((ofx - node[b + 4]) * mx), Float.floatToRawIntBits((ofy - node[b + 12]) * my)),
-                                Math.min(Float.floatToRawIntBits((ofz - node[b + 20]) * mz), t1)) + PackedWide.K;
+                    int nx = Float.floatToRawIntBits((onx - node[b]) * mx);
+                    int fx = Float.floatToRawIntBits((ofx - node[b + 4]) * mx);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 8]) * my);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 12]) * my);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 16]) * mz);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
                     if (in <= out) {
                         int r = Float.floatToRawIntBits(node[b + 24]);
                         stack[top++] = (long) in << 32 | (r & 0xffffffffL);
@@ -117,10 +129,14 @@ final class PackedOctants {
                 }
                 {
                     int b = k + (order & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits((onx - node[b]) * mx), Float.floatToRawIntBits((ony - node[b + 8]) * my)),
-                            Float.floatToRawIntBits((onz - node[b + 16]) * mz));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits((ofx - node[b + 4]) * mx), Float.floatToRawIntBits((ofy - node[b + 12]) * my)),
-                                Math.min(Float.floatToRawIntBits((ofz - node[b + 20]) * mz), t1)) + PackedWide.K;
+                    int nx = Float.floatToRawIntBits((onx - node[b]) * mx);
+                    int fx = Float.floatToRawIntBits((ofx - node[b + 4]) * mx);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 8]) * my);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 12]) * my);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 16]) * mz);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
                     if (in <= out) {
                         int r = Float.floatToRawIntBits(node[b + 24]);
                         stack[top++] = (long) in << 32 | (r & 0xffffffffL);
@@ -242,10 +258,14 @@ final class PackedOctants {
                 int next = 0;
                 if (count > 3) {
                     int b = k + (order >>> 6 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits((onx - node[b + 4]) * mx), Float.floatToRawIntBits((ony - node[b + 8]) * my)),
-                            Float.floatToRawIntBits((onz - node[b + 16]) * mz));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits((ofx - node[b]) * mx), Float.floatToRawIntBits((ofy - node[b + 12]) * my)),
-                                Math.min(Float.floatToRawIntBits((ofz - node[b + 20]) * mz), t1)) + PackedWide.K;
+                    int fx = Float.floatToRawIntBits((ofx - node[b]) * mx);
+                    int nx = Float.floatToRawIntBits((onx - node[b + 4]) * mx);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 8]) * my);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 12]) * my);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 16]) * mz);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
                     if (in <= out) {
                         int r = Float.floatToRawIntBits(node[b + 24]);
                         stack[top++] = (long) in << 32 | (r & 0xffffffffL);
@@ -254,10 +274,14 @@ final class PackedOctants {
                 }
                 if (count > 2) {
                     int b = k + (order >>> 4 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits((onx - node[b + 4]) * mx), Float.floatToRawIntBits((ony - node[b + 8]) * my)),
-                            Float.floatToRawIntBits((onz - node[b + 16]) * mz));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits((ofx - node[b]) * mx), Float.floatToRawIntBits((ofy - node[b + 12]) * my)),
-                                Math.min(Float.floatToRawIntBits((ofz - node[b + 20]) * mz), t1)) + PackedWide.K;
+                    int fx = Float.floatToRawIntBits((ofx - node[b]) * mx);
+                    int nx = Float.floatToRawIntBits((onx - node[b + 4]) * mx);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 8]) * my);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 12]) * my);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 16]) * mz);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
                     if (in <= out) {
                         int r = Float.floatToRawIntBits(node[b + 24]);
                         stack[top++] = (long) in << 32 | (r & 0xffffffffL);
@@ -266,10 +290,14 @@ final class PackedOctants {
                 }
                 {
                     int b = k + (order >>> 2 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits((onx - node[b + 4]) * mx), Float.floatToRawIntBits((ony - node[b + 8]) * my)),
-                            Float.floatToRawIntBits((onz - node[b + 16]) * mz));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits((ofx - node[b]) * mx), Float.floatToRawIntBits((ofy - node[b + 12]) * my)),
-                                Math.min(Float.floatToRawIntBits((ofz - node[b + 20]) * mz), t1)) + PackedWide.K;
+                    int fx = Float.floatToRawIntBits((ofx - node[b]) * mx);
+                    int nx = Float.floatToRawIntBits((onx - node[b + 4]) * mx);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 8]) * my);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 12]) * my);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 16]) * mz);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
                     if (in <= out) {
                         int r = Float.floatToRawIntBits(node[b + 24]);
                         stack[top++] = (long) in << 32 | (r & 0xffffffffL);
@@ -278,10 +306,14 @@ final class PackedOctants {
                 }
                 {
                     int b = k + (order & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits((onx - node[b + 4]) * mx), Float.floatToRawIntBits((ony - node[b + 8]) * my)),
-                            Float.floatToRawIntBits((onz - node[b + 16]) * mz));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits((ofx - node[b]) * mx), Float.floatToRawIntBits((ofy - node[b + 12]) * my)),
-                                Math.min(Float.floatToRawIntBits((ofz - node[b + 20]) * mz), t1)) + PackedWide.K;
+                    int fx = Float.floatToRawIntBits((ofx - node[b]) * mx);
+                    int nx = Float.floatToRawIntBits((onx - node[b + 4]) * mx);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 8]) * my);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 12]) * my);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 16]) * mz);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
                     if (in <= out) {
                         int r = Float.floatToRawIntBits(node[b + 24]);
                         stack[top++] = (long) in << 32 | (r & 0xffffffffL);
@@ -403,10 +435,14 @@ final class PackedOctants {
                 int next = 0;
                 if (count > 3) {
                     int b = k + (order >>> 6 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits((onx - node[b]) * mx), Float.floatToRawIntBits((ony - node[b + 12]) * my)),
-                            Float.floatToRawIntBits((onz - node[b + 16]) * mz));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits((ofx - node[b + 4]) * mx), Float.floatToRawIntBits((ofy - node[b + 8]) * my)),
-                                Math.min(Float.floatToRawIntBits((ofz - node[b + 20]) * mz), t1)) + PackedWide.K;
+                    int nx = Float.floatToRawIntBits((onx - node[b]) * mx);
+                    int fx = Float.floatToRawIntBits((ofx - node[b + 4]) * mx);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 8]) * my);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 12]) * my);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 16]) * mz);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
                     if (in <= out) {
                         int r = Float.floatToRawIntBits(node[b + 24]);
                         stack[top++] = (long) in << 32 | (r & 0xffffffffL);
@@ -415,10 +451,14 @@ final class PackedOctants {
                 }
                 if (count > 2) {
                     int b = k + (order >>> 4 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits((onx - node[b]) * mx), Float.floatToRawIntBits((ony - node[b + 12]) * my)),
-                            Float.floatToRawIntBits((onz - node[b + 16]) * mz));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits((ofx - node[b + 4]) * mx), Float.floatToRawIntBits((ofy - node[b + 8]) * my)),
-                                Math.min(Float.floatToRawIntBits((ofz - node[b + 20]) * mz), t1)) + PackedWide.K;
+                    int nx = Float.floatToRawIntBits((onx - node[b]) * mx);
+                    int fx = Float.floatToRawIntBits((ofx - node[b + 4]) * mx);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 8]) * my);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 12]) * my);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 16]) * mz);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
                     if (in <= out) {
                         int r = Float.floatToRawIntBits(node[b + 24]);
                         stack[top++] = (long) in << 32 | (r & 0xffffffffL);
@@ -427,10 +467,14 @@ final class PackedOctants {
                 }
                 {
                     int b = k + (order >>> 2 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits((onx - node[b]) * mx), Float.floatToRawIntBits((ony - node[b + 12]) * my)),
-                            Float.floatToRawIntBits((onz - node[b + 16]) * mz));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits((ofx - node[b + 4]) * mx), Float.floatToRawIntBits((ofy - node[b + 8]) * my)),
-                                Math.min(Float.floatToRawIntBits((ofz - node[b + 20]) * mz), t1)) + PackedWide.K;
+                    int nx = Float.floatToRawIntBits((onx - node[b]) * mx);
+                    int fx = Float.floatToRawIntBits((ofx - node[b + 4]) * mx);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 8]) * my);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 12]) * my);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 16]) * mz);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
                     if (in <= out) {
                         int r = Float.floatToRawIntBits(node[b + 24]);
                         stack[top++] = (long) in << 32 | (r & 0xffffffffL);
@@ -439,10 +483,14 @@ final class PackedOctants {
                 }
                 {
                     int b = k + (order & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits((onx - node[b]) * mx), Float.floatToRawIntBits((ony - node[b + 12]) * my)),
-                            Float.floatToRawIntBits((onz - node[b + 16]) * mz));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits((ofx - node[b + 4]) * mx), Float.floatToRawIntBits((ofy - node[b + 8]) * my)),
-                                Math.min(Float.floatToRawIntBits((ofz - node[b + 20]) * mz), t1)) + PackedWide.K;
+                    int nx = Float.floatToRawIntBits((onx - node[b]) * mx);
+                    int fx = Float.floatToRawIntBits((ofx - node[b + 4]) * mx);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 8]) * my);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 12]) * my);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 16]) * mz);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
                     if (in <= out) {
                         int r = Float.floatToRawIntBits(node[b + 24]);
                         stack[top++] = (long) in << 32 | (r & 0xffffffffL);
@@ -564,10 +612,14 @@ final class PackedOctants {
                 int next = 0;
                 if (count > 3) {
                     int b = k + (order >>> 6 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits((onx - node[b + 4]) * mx), Float.floatToRawIntBits((ony - node[b + 12]) * my)),
-                            Float.floatToRawIntBits((onz - node[b + 16]) * mz));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits((ofx - node[b]) * mx), Float.floatToRawIntBits((ofy - node[b + 8]) * my)),
-                                Math.min(Float.floatToRawIntBits((ofz - node[b + 20]) * mz), t1)) + PackedWide.K;
+                    int fx = Float.floatToRawIntBits((ofx - node[b]) * mx);
+                    int nx = Float.floatToRawIntBits((onx - node[b + 4]) * mx);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 8]) * my);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 12]) * my);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 16]) * mz);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
                     if (in <= out) {
                         int r = Float.floatToRawIntBits(node[b + 24]);
                         stack[top++] = (long) in << 32 | (r & 0xffffffffL);
@@ -576,10 +628,14 @@ final class PackedOctants {
                 }
                 if (count > 2) {
                     int b = k + (order >>> 4 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits((onx - node[b + 4]) * mx), Float.floatToRawIntBits((ony - node[b + 12]) * my)),
-                            Float.floatToRawIntBits((onz - node[b + 16]) * mz));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits((ofx - node[b]) * mx), Float.floatToRawIntBits((ofy - node[b + 8]) * my)),
-                                Math.min(Float.floatToRawIntBits((ofz - node[b + 20]) * mz), t1)) + PackedWide.K;
+                    int fx = Float.floatToRawIntBits((ofx - node[b]) * mx);
+                    int nx = Float.floatToRawIntBits((onx - node[b + 4]) * mx);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 8]) * my);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 12]) * my);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 16]) * mz);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
                     if (in <= out) {
                         int r = Float.floatToRawIntBits(node[b + 24]);
                         stack[top++] = (long) in << 32 | (r & 0xffffffffL);
@@ -588,10 +644,14 @@ final class PackedOctants {
                 }
                 {
                     int b = k + (order >>> 2 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits((onx - node[b + 4]) * mx), Float.floatToRawIntBits((ony - node[b + 12]) * my)),
-                            Float.floatToRawIntBits((onz - node[b + 16]) * mz));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits((ofx - node[b]) * mx), Float.floatToRawIntBits((ofy - node[b + 8]) * my)),
-                                Math.min(Float.floatToRawIntBits((ofz - node[b + 20]) * mz), t1)) + PackedWide.K;
+                    int fx = Float.floatToRawIntBits((ofx - node[b]) * mx);
+                    int nx = Float.floatToRawIntBits((onx - node[b + 4]) * mx);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 8]) * my);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 12]) * my);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 16]) * mz);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
                     if (in <= out) {
                         int r = Float.floatToRawIntBits(node[b + 24]);
                         stack[top++] = (long) in << 32 | (r & 0xffffffffL);
@@ -600,10 +660,14 @@ final class PackedOctants {
                 }
                 {
                     int b = k + (order & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits((onx - node[b + 4]) * mx), Float.floatToRawIntBits((ony - node[b + 12]) * my)),
-                            Float.floatToRawIntBits((onz - node[b + 16]) * mz));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits((ofx - node[b]) * mx), Float.floatToRawIntBits((ofy - node[b + 8]) * my)),
-                                Math.min(Float.floatToRawIntBits((ofz - node[b + 20]) * mz), t1)) + PackedWide.K;
+                    int fx = Float.floatToRawIntBits((ofx - node[b]) * mx);
+                    int nx = Float.floatToRawIntBits((onx - node[b + 4]) * mx);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 8]) * my);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 12]) * my);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 16]) * mz);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
                     if (in <= out) {
                         int r = Float.floatToRawIntBits(node[b + 24]);
                         stack[top++] = (long) in << 32 | (r & 0xffffffffL);
@@ -725,10 +789,14 @@ final class PackedOctants {
                 int next = 0;
                 if (count > 3) {
                     int b = k + (order >>> 6 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits((onx - node[b]) * mx), Float.floatToRawIntBits((ony - node[b + 8]) * my)),
-                            Float.floatToRawIntBits((onz - node[b + 20]) * mz));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits((ofx - node[b + 4]) * mx), Float.floatToRawIntBits((ofy - node[b + 12]) * my)),
-                                Math.min(Float.floatToRawIntBits((ofz - node[b + 16]) * mz), t1)) + PackedWide.K;
+                    int nx = Float.floatToRawIntBits((onx - node[b]) * mx);
+                    int fx = Float.floatToRawIntBits((ofx - node[b + 4]) * mx);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 8]) * my);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 12]) * my);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 16]) * mz);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
                     if (in <= out) {
                         int r = Float.floatToRawIntBits(node[b + 24]);
                         stack[top++] = (long) in << 32 | (r & 0xffffffffL);
@@ -737,10 +805,14 @@ final class PackedOctants {
                 }
                 if (count > 2) {
                     int b = k + (order >>> 4 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits((onx - node[b]) * mx), Float.floatToRawIntBits((ony - node[b + 8]) * my)),
-                            Float.floatToRawIntBits((onz - node[b + 20]) * mz));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits((ofx - node[b + 4]) * mx), Float.floatToRawIntBits((ofy - node[b + 12]) * my)),
-                                Math.min(Float.floatToRawIntBits((ofz - node[b + 16]) * mz), t1)) + PackedWide.K;
+                    int nx = Float.floatToRawIntBits((onx - node[b]) * mx);
+                    int fx = Float.floatToRawIntBits((ofx - node[b + 4]) * mx);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 8]) * my);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 12]) * my);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 16]) * mz);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
                     if (in <= out) {
                         int r = Float.floatToRawIntBits(node[b + 24]);
                         stack[top++] = (long) in << 32 | (r & 0xffffffffL);
@@ -749,10 +821,14 @@ final class PackedOctants {
                 }
                 {
                     int b = k + (order >>> 2 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits((onx - node[b]) * mx), Float.floatToRawIntBits((ony - node[b + 8]) * my)),
-                            Float.floatToRawIntBits((onz - node[b + 20]) * mz));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits((ofx - node[b + 4]) * mx), Float.floatToRawIntBits((ofy - node[b + 12]) * my)),
-                                Math.min(Float.floatToRawIntBits((ofz - node[b + 16]) * mz), t1)) + PackedWide.K;
+                    int nx = Float.floatToRawIntBits((onx - node[b]) * mx);
+                    int fx = Float.floatToRawIntBits((ofx - node[b + 4]) * mx);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 8]) * my);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 12]) * my);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 16]) * mz);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
                     if (in <= out) {
                         int r = Float.floatToRawIntBits(node[b + 24]);
                         stack[top++] = (long) in << 32 | (r & 0xffffffffL);
@@ -761,10 +837,14 @@ final class PackedOctants {
                 }
                 {
                     int b = k + (order & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits((onx - node[b]) * mx), Float.floatToRawIntBits((ony - node[b + 8]) * my)),
-                            Float.floatToRawIntBits((onz - node[b + 20]) * mz));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits((ofx - node[b + 4]) * mx), Float.floatToRawIntBits((ofy - node[b + 12]) * my)),
-                                Math.min(Float.floatToRawIntBits((ofz - node[b + 16]) * mz), t1)) + PackedWide.K;
+                    int nx = Float.floatToRawIntBits((onx - node[b]) * mx);
+                    int fx = Float.floatToRawIntBits((ofx - node[b + 4]) * mx);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 8]) * my);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 12]) * my);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 16]) * mz);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
                     if (in <= out) {
                         int r = Float.floatToRawIntBits(node[b + 24]);
                         stack[top++] = (long) in << 32 | (r & 0xffffffffL);
@@ -886,10 +966,14 @@ final class PackedOctants {
                 int next = 0;
                 if (count > 3) {
                     int b = k + (order >>> 6 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits((onx - node[b + 4]) * mx), Float.floatToRawIntBits((ony - node[b + 8]) * my)),
-                            Float.floatToRawIntBits((onz - node[b + 20]) * mz));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits((ofx - node[b]) * mx), Float.floatToRawIntBits((ofy - node[b + 12]) * my)),
-                                Math.min(Float.floatToRawIntBits((ofz - node[b + 16]) * mz), t1)) + PackedWide.K;
+                    int fx = Float.floatToRawIntBits((ofx - node[b]) * mx);
+                    int nx = Float.floatToRawIntBits((onx - node[b + 4]) * mx);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 8]) * my);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 12]) * my);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 16]) * mz);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
                     if (in <= out) {
                         int r = Float.floatToRawIntBits(node[b + 24]);
                         stack[top++] = (long) in << 32 | (r & 0xffffffffL);
@@ -898,10 +982,14 @@ final class PackedOctants {
                 }
                 if (count > 2) {
                     int b = k + (order >>> 4 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits((onx - node[b + 4]) * mx), Float.floatToRawIntBits((ony - node[b + 8]) * my)),
-                            Float.floatToRawIntBits((onz - node[b + 20]) * mz));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits((ofx - node[b]) * mx), Float.floatToRawIntBits((ofy - node[b + 12]) * my)),
-                                Math.min(Float.floatToRawIntBits((ofz - node[b + 16]) * mz), t1)) + PackedWide.K;
+                    int fx = Float.floatToRawIntBits((ofx - node[b]) * mx);
+                    int nx = Float.floatToRawIntBits((onx - node[b + 4]) * mx);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 8]) * my);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 12]) * my);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 16]) * mz);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
                     if (in <= out) {
                         int r = Float.floatToRawIntBits(node[b + 24]);
                         stack[top++] = (long) in << 32 | (r & 0xffffffffL);
@@ -910,10 +998,14 @@ final class PackedOctants {
                 }
                 {
                     int b = k + (order >>> 2 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits((onx - node[b + 4]) * mx), Float.floatToRawIntBits((ony - node[b + 8]) * my)),
-                            Float.floatToRawIntBits((onz - node[b + 20]) * mz));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits((ofx - node[b]) * mx), Float.floatToRawIntBits((ofy - node[b + 12]) * my)),
-                                Math.min(Float.floatToRawIntBits((ofz - node[b + 16]) * mz), t1)) + PackedWide.K;
+                    int fx = Float.floatToRawIntBits((ofx - node[b]) * mx);
+                    int nx = Float.floatToRawIntBits((onx - node[b + 4]) * mx);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 8]) * my);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 12]) * my);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 16]) * mz);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
                     if (in <= out) {
                         int r = Float.floatToRawIntBits(node[b + 24]);
                         stack[top++] = (long) in << 32 | (r & 0xffffffffL);
@@ -922,10 +1014,14 @@ final class PackedOctants {
                 }
                 {
                     int b = k + (order & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits((onx - node[b + 4]) * mx), Float.floatToRawIntBits((ony - node[b + 8]) * my)),
-                            Float.floatToRawIntBits((onz - node[b + 20]) * mz));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits((ofx - node[b]) * mx), Float.floatToRawIntBits((ofy - node[b + 12]) * my)),
-                                Math.min(Float.floatToRawIntBits((ofz - node[b + 16]) * mz), t1)) + PackedWide.K;
+                    int fx = Float.floatToRawIntBits((ofx - node[b]) * mx);
+                    int nx = Float.floatToRawIntBits((onx - node[b + 4]) * mx);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 8]) * my);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 12]) * my);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 16]) * mz);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
                     if (in <= out) {
                         int r = Float.floatToRawIntBits(node[b + 24]);
                         stack[top++] = (long) in << 32 | (r & 0xffffffffL);
@@ -1047,10 +1143,14 @@ final class PackedOctants {
                 int next = 0;
                 if (count > 3) {
                     int b = k + (order >>> 6 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits((onx - node[b]) * mx), Float.floatToRawIntBits((ony - node[b + 12]) * my)),
-                            Float.floatToRawIntBits((onz - node[b + 20]) * mz));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits((ofx - node[b + 4]) * mx), Float.floatToRawIntBits((ofy - node[b + 8]) * my)),
-                                Math.min(Float.floatToRawIntBits((ofz - node[b + 16]) * mz), t1)) + PackedWide.K;
+                    int nx = Float.floatToRawIntBits((onx - node[b]) * mx);
+                    int fx = Float.floatToRawIntBits((ofx - node[b + 4]) * mx);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 8]) * my);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 12]) * my);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 16]) * mz);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
                     if (in <= out) {
                         int r = Float.floatToRawIntBits(node[b + 24]);
                         stack[top++] = (long) in << 32 | (r & 0xffffffffL);
@@ -1059,10 +1159,14 @@ final class PackedOctants {
                 }
                 if (count > 2) {
                     int b = k + (order >>> 4 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits((onx - node[b]) * mx), Float.floatToRawIntBits((ony - node[b + 12]) * my)),
-                            Float.floatToRawIntBits((onz - node[b + 20]) * mz));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits((ofx - node[b + 4]) * mx), Float.floatToRawIntBits((ofy - node[b + 8]) * my)),
-                                Math.min(Float.floatToRawIntBits((ofz - node[b + 16]) * mz), t1)) + PackedWide.K;
+                    int nx = Float.floatToRawIntBits((onx - node[b]) * mx);
+                    int fx = Float.floatToRawIntBits((ofx - node[b + 4]) * mx);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 8]) * my);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 12]) * my);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 16]) * mz);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
                     if (in <= out) {
                         int r = Float.floatToRawIntBits(node[b + 24]);
                         stack[top++] = (long) in << 32 | (r & 0xffffffffL);
@@ -1071,10 +1175,14 @@ final class PackedOctants {
                 }
                 {
                     int b = k + (order >>> 2 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits((onx - node[b]) * mx), Float.floatToRawIntBits((ony - node[b + 12]) * my)),
-                            Float.floatToRawIntBits((onz - node[b + 20]) * mz));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits((ofx - node[b + 4]) * mx), Float.floatToRawIntBits((ofy - node[b + 8]) * my)),
-                                Math.min(Float.floatToRawIntBits((ofz - node[b + 16]) * mz), t1)) + PackedWide.K;
+                    int nx = Float.floatToRawIntBits((onx - node[b]) * mx);
+                    int fx = Float.floatToRawIntBits((ofx - node[b + 4]) * mx);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 8]) * my);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 12]) * my);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 16]) * mz);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
                     if (in <= out) {
                         int r = Float.floatToRawIntBits(node[b + 24]);
                         stack[top++] = (long) in << 32 | (r & 0xffffffffL);
@@ -1083,10 +1191,14 @@ final class PackedOctants {
                 }
                 {
                     int b = k + (order & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits((onx - node[b]) * mx), Float.floatToRawIntBits((ony - node[b + 12]) * my)),
-                            Float.floatToRawIntBits((onz - node[b + 20]) * mz));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits((ofx - node[b + 4]) * mx), Float.floatToRawIntBits((ofy - node[b + 8]) * my)),
-                                Math.min(Float.floatToRawIntBits((ofz - node[b + 16]) * mz), t1)) + PackedWide.K;
+                    int nx = Float.floatToRawIntBits((onx - node[b]) * mx);
+                    int fx = Float.floatToRawIntBits((ofx - node[b + 4]) * mx);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 8]) * my);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 12]) * my);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 16]) * mz);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
                     if (in <= out) {
                         int r = Float.floatToRawIntBits(node[b + 24]);
                         stack[top++] = (long) in << 32 | (r & 0xffffffffL);
@@ -1208,10 +1320,14 @@ final class PackedOctants {
                 int next = 0;
                 if (count > 3) {
                     int b = k + (order >>> 6 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits((onx - node[b + 4]) * mx), Float.floatToRawIntBits((ony - node[b + 12]) * my)),
-                            Float.floatToRawIntBits((onz - node[b + 20]) * mz));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits((ofx - node[b]) * mx), Float.floatToRawIntBits((ofy - node[b + 8]) * my)),
-                                Math.min(Float.floatToRawIntBits((ofz - node[b + 16]) * mz), t1)) + PackedWide.K;
+                    int fx = Float.floatToRawIntBits((ofx - node[b]) * mx);
+                    int nx = Float.floatToRawIntBits((onx - node[b + 4]) * mx);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 8]) * my);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 12]) * my);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 16]) * mz);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
                     if (in <= out) {
                         int r = Float.floatToRawIntBits(node[b + 24]);
                         stack[top++] = (long) in << 32 | (r & 0xffffffffL);
@@ -1220,10 +1336,14 @@ final class PackedOctants {
                 }
                 if (count > 2) {
                     int b = k + (order >>> 4 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits((onx - node[b + 4]) * mx), Float.floatToRawIntBits((ony - node[b + 12]) * my)),
-                            Float.floatToRawIntBits((onz - node[b + 20]) * mz));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits((ofx - node[b]) * mx), Float.floatToRawIntBits((ofy - node[b + 8]) * my)),
-                                Math.min(Float.floatToRawIntBits((ofz - node[b + 16]) * mz), t1)) + PackedWide.K;
+                    int fx = Float.floatToRawIntBits((ofx - node[b]) * mx);
+                    int nx = Float.floatToRawIntBits((onx - node[b + 4]) * mx);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 8]) * my);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 12]) * my);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 16]) * mz);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
                     if (in <= out) {
                         int r = Float.floatToRawIntBits(node[b + 24]);
                         stack[top++] = (long) in << 32 | (r & 0xffffffffL);
@@ -1232,10 +1352,14 @@ final class PackedOctants {
                 }
                 {
                     int b = k + (order >>> 2 & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits((onx - node[b + 4]) * mx), Float.floatToRawIntBits((ony - node[b + 12]) * my)),
-                            Float.floatToRawIntBits((onz - node[b + 20]) * mz));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits((ofx - node[b]) * mx), Float.floatToRawIntBits((ofy - node[b + 8]) * my)),
-                                Math.min(Float.floatToRawIntBits((ofz - node[b + 16]) * mz), t1)) + PackedWide.K;
+                    int fx = Float.floatToRawIntBits((ofx - node[b]) * mx);
+                    int nx = Float.floatToRawIntBits((onx - node[b + 4]) * mx);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 8]) * my);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 12]) * my);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 16]) * mz);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
                     if (in <= out) {
                         int r = Float.floatToRawIntBits(node[b + 24]);
                         stack[top++] = (long) in << 32 | (r & 0xffffffffL);
@@ -1244,10 +1368,14 @@ final class PackedOctants {
                 }
                 {
                     int b = k + (order & 3);
-                    int in = Math.max(Math.max(Float.floatToRawIntBits((onx - node[b + 4]) * mx), Float.floatToRawIntBits((ony - node[b + 12]) * my)),
-                            Float.floatToRawIntBits((onz - node[b + 20]) * mz));
-                    int out = Math.min(Math.min(Float.floatToRawIntBits((ofx - node[b]) * mx), Float.floatToRawIntBits((ofy - node[b + 8]) * my)),
-                                Math.min(Float.floatToRawIntBits((ofz - node[b + 16]) * mz), t1)) + PackedWide.K;
+                    int fx = Float.floatToRawIntBits((ofx - node[b]) * mx);
+                    int nx = Float.floatToRawIntBits((onx - node[b + 4]) * mx);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 8]) * my);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 12]) * my);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 16]) * mz);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
                     if (in <= out) {
                         int r = Float.floatToRawIntBits(node[b + 24]);
                         stack[top++] = (long) in << 32 | (r & 0xffffffffL);
