@@ -109,8 +109,9 @@ final class PackedTriangles implements Mesh.Engine {
         final double dx = ray.d.x, dy = ray.d.y, dz = ray.d.z;
         final boolean gx = dx < 0, gy = dy < 0, gz = dz < 0;
         final int octant = (gx ? 1 : 0) | (gy ? 2 : 0) | (gz ? 4 : 0);
-        // Slab distance (o' − b)·m with m = −1/d in float and o' a float strictly beyond o on the safe
-        // side: toward the ray (above o when d > 0) for near planes, away from it for far ones.
+        // Slab distance (o' − b)·m with m = −1/d in float and o' a float strictly on the safe side of o:
+        // for near planes above o when d > 0 (below when d < 0), for far ones the other way round, so
+        // that no computed near distance exceeds the exact one and no far one falls short of it.
         final float mx = -(float) (1.0 / dx), my = -(float) (1.0 / dy), mz = -(float) (1.0 / dz);
         final float lx = PackedWide.below(px), hx = PackedWide.above(px);
         final float ly = PackedWide.below(py), hy = PackedWide.above(py);
