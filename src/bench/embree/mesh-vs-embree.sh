@@ -6,6 +6,7 @@
 # target/raylab.jar if missing, then per round and level runs: Embree, raylab with the 4-wide
 # traversal (the default; $RAYLAB_MODES overrides), raylab with -Draylab.mesh.traversal=double. Every line is
 # one JSON object; raylab's cpu_* fields are rays per second of the tracing thread's CPU time.
+# RAYLAB_JARS="a.jar b.jar" runs each jar in turn (old and new builds side by side) instead of target/raylab.jar.
 set -eu
 root=$(cd "$(dirname "$0")/../../.." && pwd)
 harness=${EMBREE_BENCH_DIR:-$root/../shared/bench/embree}
@@ -27,9 +28,13 @@ for r in $(seq 1 "${2:-3}"); do
   for L in ${1:-6}; do
     [ -f "$out/ico$L.obj" ] || python3 "$harness/meshgen.py" "$L" "$out/ico$L.obj"
     echo "{\"round\":$r,\"level\":$L,\"engine\":\"embree\",\"load\":\"$(cut -d' ' -f1 /proc/loadavg)\",\"result\":$("$out/embree_bench_cpu" "$out/ico$L.obj" 1024 768 1 3)}"
-    for mode in ${RAYLAB_MODES:-wide double}; do
-      res=$(java -Draylab.mesh.traversal=$mode -jar "$root/target/raylab.jar" bench --obj "$out/ico$L.obj" --threads 1 --warmup 2 --runs 3 | tail -1)
-      echo "{\"round\":$r,\"level\":$L,\"engine\":\"raylab-$mode\",\"load\":\"$(cut -d' ' -f1 /proc/loadavg)\",\"result\":$res}"
+    for jar in ${RAYLAB_JARS:-$root/target/raylab.jar}; do
+      tag=""
+      [ -z "${RAYLAB_JARS:-}" ] || tag="-$(basename "$jar" .jar)"
+      for mode in ${RAYLAB_MODES:-wide double}; do
+        res=$(java -Draylab.mesh.traversal=$mode -jar "$jar" bench --obj "$out/ico$L.obj" --threads 1 --warmup 2 --runs 3 | tail -1)
+        echo "{\"round\":$r,\"level\":$L,\"engine\":\"raylab$tag-$mode\",\"load\":\"$(cut -d' ' -f1 /proc/loadavg)\",\"result\":$res}"
+      done
     done
   done
 done

@@ -7,57 +7,58 @@ package raylab.surface;
  * The packed engine's 4-wide float traversal, one copy per ray octant (instructor-only, kept out
  * of the starter with {@code PackedTriangles}). Octant o has bit 1 set when d.x &lt; 0, bit 2 when
  * d.y &lt; 0, bit 4 when d.z &lt; 0; in its copy the near and far planes of every axis sit at
- * constant offsets. A slab distance is one FMA, b·i + c, with i = 1/d rounded to float and c a
- * float below −o·i for near planes, above it for far ones; the distances are compared as
- * their float bits, as ints. Node layout and the proof that no hit is lost: {@link PackedWide}
- * and docs/mesh-engine.md.
+ * constant offsets. A slab distance is a subtraction and a product, (o' − b)·m, with m = −1/d
+ * rounded to float and o' the origin rounded to a float on the safe side (above or below o: nearer
+ * than o for near planes, farther for far ones); the distances are compared as their float bits,
+ * as ints. Node layout and the proof that no hit is lost: {@link PackedWide} and
+ * docs/mesh-engine.md.
  *
- * <p>Each octant has two methods: {@code traceN} tests the leaves ({@link PackedWide#leaf}, the
- * double watertight test) and pops pending children after them; {@code downN} tests boxes and
- * descends until it reaches a leaf, and calls nothing, so that its loop keeps the ray in
- * registers. Pending children are longs: entry distance bits &lt;&lt; 32 | reference.
+ * <p>Each octant has one method, {@code traceN}: one loop that tests a node's boxes and enters the
+ * nearest child at once, or tests a leaf's triangles with the double watertight test
+ * ({@link PackedTriangles#hitT} and the plane rule, as {@link Triangle#intersect}), written out
+ * for each ray-space axis order so that the vertex offsets are constants, then pops the next
+ * pending child. Pending children are longs: entry distance bits &lt;&lt; 32 | reference.
  */
 final class PackedOctants {
-    /** What a descent returns when the stack is empty: no leaf is left. */
-    static final long DONE = Long.MIN_VALUE;
-
     private PackedOctants() {
     }
 
     /**
      * Closest (or any) hit below the closest hit so far ({@code ray[PackedWide.BEST]}): returns the
      * leaf slot of the hit triangle, or −1 for none; {@code ray} holds the ray for the leaves
-     * ({@link PackedWide#leaf}) and gets the new closest hit. The ray is given in float for the
-     * tree: c*: below −o·i for near planes (cn*), above for far ones (cf*); i*: 1/d.
+     * (PackedWide's slots) and gets the new closest hit and the count of triangle tests. kz: the
+     * ray-space axis of the watertight test (the largest direction component). The ray is given
+     * in float for the tree: o*: the origin rounded for near planes (on*) and far ones (of*); m*:
+     * −1/d.
      */
     static int trace(int octant, PackedWide wide, int[] leaf, double[] tri, long[] stack,
-            double[] ray, int axes, float cnx, float cny, float cnz, float cfx, float cfy, float cfz, float ix,
-            float iy, float iz, boolean anyHit) {
+            double[] ray, int kz, float onx, float ony, float onz, float ofx, float ofy, float ofz,
+            float mx, float my, float mz, boolean anyHit) {
         switch (octant) {
             case 0:
-                return trace0(wide.node, wide.root, leaf, tri, stack, ray, axes, cnx, cny, cnz,
-                        cfx, cfy, cfz, ix, iy, iz, anyHit);
+                return trace0(wide.node, wide.root, leaf, tri, stack, ray, kz, onx, ony, onz, ofx, ofy, ofz,
+                        mx, my, mz, anyHit);
             case 1:
-                return trace1(wide.node, wide.root, leaf, tri, stack, ray, axes, cnx, cny, cnz,
-                        cfx, cfy, cfz, ix, iy, iz, anyHit);
+                return trace1(wide.node, wide.root, leaf, tri, stack, ray, kz, onx, ony, onz, ofx, ofy, ofz,
+                        mx, my, mz, anyHit);
             case 2:
-                return trace2(wide.node, wide.root, leaf, tri, stack, ray, axes, cnx, cny, cnz,
-                        cfx, cfy, cfz, ix, iy, iz, anyHit);
+                return trace2(wide.node, wide.root, leaf, tri, stack, ray, kz, onx, ony, onz, ofx, ofy, ofz,
+                        mx, my, mz, anyHit);
             case 3:
-                return trace3(wide.node, wide.root, leaf, tri, stack, ray, axes, cnx, cny, cnz,
-                        cfx, cfy, cfz, ix, iy, iz, anyHit);
+                return trace3(wide.node, wide.root, leaf, tri, stack, ray, kz, onx, ony, onz, ofx, ofy, ofz,
+                        mx, my, mz, anyHit);
             case 4:
-                return trace4(wide.node, wide.root, leaf, tri, stack, ray, axes, cnx, cny, cnz,
-                        cfx, cfy, cfz, ix, iy, iz, anyHit);
+                return trace4(wide.node, wide.root, leaf, tri, stack, ray, kz, onx, ony, onz, ofx, ofy, ofz,
+                        mx, my, mz, anyHit);
             case 5:
-                return trace5(wide.node, wide.root, leaf, tri, stack, ray, axes, cnx, cny, cnz,
-                        cfx, cfy, cfz, ix, iy, iz, anyHit);
+                return trace5(wide.node, wide.root, leaf, tri, stack, ray, kz, onx, ony, onz, ofx, ofy, ofz,
+                        mx, my, mz, anyHit);
             case 6:
-                return trace6(wide.node, wide.root, leaf, tri, stack, ray, axes, cnx, cny, cnz,
-                        cfx, cfy, cfz, ix, iy, iz, anyHit);
+                return trace6(wide.node, wide.root, leaf, tri, stack, ray, kz, onx, ony, onz, ofx, ofy, ofz,
+                        mx, my, mz, anyHit);
             case 7:
-                return trace7(wide.node, wide.root, leaf, tri, stack, ray, axes, cnx, cny, cnz,
-                        cfx, cfy, cfz, ix, iy, iz, anyHit);
+                return trace7(wide.node, wide.root, leaf, tri, stack, ray, kz, onx, ony, onz, ofx, ofy, ofz,
+                        mx, my, mz, anyHit);
             default:
                 throw new IllegalArgumentException("octant " + octant);
         }
@@ -65,115 +66,171 @@ final class PackedOctants {
 
     /** Octant 0: d.x > 0, d.y > 0, d.z > 0. */
     private static int trace0(float[] node, int root, int[] leaf, double[] tri, long[] stack,
-            double[] ray, int axes, float cnx, float cny, float cnz, float cfx, float cfy, float cfz, float ix,
-            float iy, float iz, boolean anyHit) {
+            double[] ray, int kz, float onx, float ony, float onz, float ofx, float ofy, float ofz,
+            float mx, float my, float mz, boolean anyHit) {
         int t1 = PackedWide.exitBits(Math.min(ray[PackedWide.BEST], ray[PackedWide.TMAX]));
         int top = 0;
         int ref = root;
         int bestSlot = -1;
         while (true) {
-            long r = down0(node, stack, top, ref, t1, cnx, cny, cnz, cfx, cfy, cfz, ix, iy, iz);
-            if (r == DONE) {
-                return bestSlot;
-            }
-            top = (int) (r >>> 32);
-            long h = PackedWide.leaf(~(int) r, leaf, tri, ray, axes, anyHit);
-            if ((int) h >= 0) {
-                bestSlot = (int) h;
-                t1 = (int) (h >>> 32);
-                if (anyHit) {
-                    return bestSlot;
+            if (ref >= 0) {
+                int k = ref << 5;
+                int order = Float.floatToRawIntBits(node[k + 28]);
+                int count = Float.floatToRawIntBits(node[k + 30]);
+                // The child entered last (the nearest), or 0 for none: no child is the root, node 0.
+                int next = 0;
+                if (count > 3) {
+                    int b = k + (order >>> 6 & 3);
+                    int nx = Float.floatToRawIntBits((onx - node[b]) * mx);
+                    int fx = Float.floatToRawIntBits((ofx - node[b + 4]) * mx);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 8]) * my);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 12]) * my);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 16]) * mz);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
+                    if (in <= out) {
+                        int r = Float.floatToRawIntBits(node[b + 24]);
+                        stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                        next = r;
+                    }
+                }
+                if (count > 2) {
+                    int b = k + (order >>> 4 & 3);
+                    int nx = Float.floatToRawIntBits((onx - node[b]) * mx);
+                    int fx = Float.floatToRawIntBits((ofx - node[b + 4]) * mx);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 8]) * my);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 12]) * my);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 16]) * mz);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
+                    if (in <= out) {
+                        int r = Float.floatToRawIntBits(node[b + 24]);
+                        stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                        next = r;
+                    }
+                }
+                {
+                    int b = k + (order >>> 2 & 3);
+                    int nx = Float.floatToRawIntBits((onx - node[b]) * mx);
+                    int fx = Float.floatToRawIntBits((ofx - node[b + 4]) * mx);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 8]) * my);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 12]) * my);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 16]) * mz);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
+                    if (in <= out) {
+                        int r = Float.floatToRawIntBits(node[b + 24]);
+                        stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                        next = r;
+                    }
+                }
+                {
+                    int b = k + (order & 3);
+                    int nx = Float.floatToRawIntBits((onx - node[b]) * mx);
+                    int fx = Float.floatToRawIntBits((ofx - node[b + 4]) * mx);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 8]) * my);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 12]) * my);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 16]) * mz);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
+                    if (in <= out) {
+                        int r = Float.floatToRawIntBits(node[b + 24]);
+                        stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                        next = r;
+                    }
+                }
+                if (next != 0) {
+                    // The nearest child entered: down to it at once (its copy on the stack is dropped),
+                    // so that the next node's address does not wait for the stack.
+                    top--;
+                    ref = next;
+                    continue;
+                }
+            } else {
+                // A leaf: its triangles with the double watertight test, as Triangle.intersect.
+                int l = ~ref;
+                final double px = ray[PackedWide.PX], py = ray[PackedWide.PY], pz = ray[PackedWide.PZ];
+                final double tMin = ray[PackedWide.TMIN], tMax = ray[PackedWide.TMAX];
+                final double shx = ray[PackedWide.SHX], shy = ray[PackedWide.SHY], shz = ray[PackedWide.SHZ];
+                final double pkx = ray[PackedWide.PKX], pky = ray[PackedWide.PKY], pkz = ray[PackedWide.PKZ];
+                double best = ray[PackedWide.BEST];
+                int found = -1;
+                int first = leaf[2 * l];
+                int end = first + leaf[2 * l + 1];
+                int s = first;
+                if (kz == 2) {
+                    for (; s < end; s++) {
+                        double t = PackedTriangles.hitT(tri, 9 * s, 0, 1, 2, shx, shy, shz, pkx, pky, pkz);
+                        // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
+                        // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
+                        if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
+                            t = PackedTriangles.planeRule(t, tri, 9 * s, px, py, pz);
+                        }
+                        // NaN (no hit) fails every comparison.
+                        if (t >= tMin && t <= tMax && t < best) {
+                            best = t;
+                            found = s;
+                            if (anyHit) {
+                                s++;
+                                break;
+                            }
+                        }
+                    }
+                } else if (kz == 1) {
+                    for (; s < end; s++) {
+                        double t = PackedTriangles.hitT(tri, 9 * s, 2, 0, 1, shx, shy, shz, pkx, pky, pkz);
+                        // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
+                        // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
+                        if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
+                            t = PackedTriangles.planeRule(t, tri, 9 * s, px, py, pz);
+                        }
+                        // NaN (no hit) fails every comparison.
+                        if (t >= tMin && t <= tMax && t < best) {
+                            best = t;
+                            found = s;
+                            if (anyHit) {
+                                s++;
+                                break;
+                            }
+                        }
+                    }
+                } else {
+                    for (; s < end; s++) {
+                        double t = PackedTriangles.hitT(tri, 9 * s, 1, 2, 0, shx, shy, shz, pkx, pky, pkz);
+                        // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
+                        // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
+                        if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
+                            t = PackedTriangles.planeRule(t, tri, 9 * s, px, py, pz);
+                        }
+                        // NaN (no hit) fails every comparison.
+                        if (t >= tMin && t <= tMax && t < best) {
+                            best = t;
+                            found = s;
+                            if (anyHit) {
+                                s++;
+                                break;
+                            }
+                        }
+                    }
+                }
+                ray[PackedWide.TESTS] += s - first;
+                if (found >= 0) {
+                    ray[PackedWide.BEST] = best;
+                    bestSlot = found;
+                    t1 = PackedWide.exitBits(best);
+                    if (anyHit) {
+                        return bestSlot;
+                    }
                 }
             }
             // Pop the nearest pending child that can still hold a closer hit.
-            ref = 0;
             while (true) {
                 if (top == 0) {
                     return bestSlot;
-                }
-                long e = stack[--top];
-                if ((int) (e >> 32) <= t1 + PackedWide.K) {
-                    ref = (int) e;
-                    break;
-                }
-            }
-        }
-    }
-
-    /**
-     * Octant 0's descent from ref: box tests and pops until a leaf; returns top << 32 | the leaf's
-     * reference, or {@link #DONE}.
-     */
-    private static long down0(float[] node, long[] stack, int top, int ref, int t1, float cnx,
-            float cny, float cnz, float cfx, float cfy, float cfz, float ix, float iy, float iz) {
-        while (true) {
-            if (ref < 0) {
-                return (long) top << 32 | (ref & 0xffffffffL);
-            }
-            int k = ref << 5;
-            int order = Float.floatToRawIntBits(node[k + 28]);
-            int count = Float.floatToRawIntBits(node[k + 30]);
-            // The child entered last (the nearest), or 0 for none: no child is the root, node 0.
-            int next = 0;
-            if (count > 3) {
-                int b = k + (order >>> 6 & 3);
-                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
-                        Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
-                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
-                if (in <= out) {
-                    int r = Float.floatToRawIntBits(node[b + 24]);
-                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
-                    next = r;
-                }
-            }
-            if (count > 2) {
-                int b = k + (order >>> 4 & 3);
-                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
-                        Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
-                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
-                if (in <= out) {
-                    int r = Float.floatToRawIntBits(node[b + 24]);
-                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
-                    next = r;
-                }
-            }
-            {
-                int b = k + (order >>> 2 & 3);
-                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
-                        Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
-                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
-                if (in <= out) {
-                    int r = Float.floatToRawIntBits(node[b + 24]);
-                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
-                    next = r;
-                }
-            }
-            {
-                int b = k + (order & 3);
-                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
-                        Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
-                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
-                if (in <= out) {
-                    int r = Float.floatToRawIntBits(node[b + 24]);
-                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
-                    next = r;
-                }
-            }
-            if (next != 0) {
-                // The nearest child entered: down to it at once (its copy on the stack is dropped),
-                // so that the next node's address does not wait for the stack.
-                top--;
-                ref = next;
-                continue;
-            }
-            // Pop the nearest pending child that can still hold a closer hit.
-            while (true) {
-                if (top == 0) {
-                    return DONE;
                 }
                 long e = stack[--top];
                 if ((int) (e >> 32) <= t1 + PackedWide.K) {
@@ -186,115 +243,171 @@ final class PackedOctants {
 
     /** Octant 1: d.x < 0, d.y > 0, d.z > 0. */
     private static int trace1(float[] node, int root, int[] leaf, double[] tri, long[] stack,
-            double[] ray, int axes, float cnx, float cny, float cnz, float cfx, float cfy, float cfz, float ix,
-            float iy, float iz, boolean anyHit) {
+            double[] ray, int kz, float onx, float ony, float onz, float ofx, float ofy, float ofz,
+            float mx, float my, float mz, boolean anyHit) {
         int t1 = PackedWide.exitBits(Math.min(ray[PackedWide.BEST], ray[PackedWide.TMAX]));
         int top = 0;
         int ref = root;
         int bestSlot = -1;
         while (true) {
-            long r = down1(node, stack, top, ref, t1, cnx, cny, cnz, cfx, cfy, cfz, ix, iy, iz);
-            if (r == DONE) {
-                return bestSlot;
-            }
-            top = (int) (r >>> 32);
-            long h = PackedWide.leaf(~(int) r, leaf, tri, ray, axes, anyHit);
-            if ((int) h >= 0) {
-                bestSlot = (int) h;
-                t1 = (int) (h >>> 32);
-                if (anyHit) {
-                    return bestSlot;
+            if (ref >= 0) {
+                int k = ref << 5;
+                int order = Float.floatToRawIntBits(node[k + 28]) >>> 8;
+                int count = Float.floatToRawIntBits(node[k + 30]);
+                // The child entered last (the nearest), or 0 for none: no child is the root, node 0.
+                int next = 0;
+                if (count > 3) {
+                    int b = k + (order >>> 6 & 3);
+                    int fx = Float.floatToRawIntBits((ofx - node[b]) * mx);
+                    int nx = Float.floatToRawIntBits((onx - node[b + 4]) * mx);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 8]) * my);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 12]) * my);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 16]) * mz);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
+                    if (in <= out) {
+                        int r = Float.floatToRawIntBits(node[b + 24]);
+                        stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                        next = r;
+                    }
+                }
+                if (count > 2) {
+                    int b = k + (order >>> 4 & 3);
+                    int fx = Float.floatToRawIntBits((ofx - node[b]) * mx);
+                    int nx = Float.floatToRawIntBits((onx - node[b + 4]) * mx);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 8]) * my);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 12]) * my);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 16]) * mz);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
+                    if (in <= out) {
+                        int r = Float.floatToRawIntBits(node[b + 24]);
+                        stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                        next = r;
+                    }
+                }
+                {
+                    int b = k + (order >>> 2 & 3);
+                    int fx = Float.floatToRawIntBits((ofx - node[b]) * mx);
+                    int nx = Float.floatToRawIntBits((onx - node[b + 4]) * mx);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 8]) * my);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 12]) * my);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 16]) * mz);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
+                    if (in <= out) {
+                        int r = Float.floatToRawIntBits(node[b + 24]);
+                        stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                        next = r;
+                    }
+                }
+                {
+                    int b = k + (order & 3);
+                    int fx = Float.floatToRawIntBits((ofx - node[b]) * mx);
+                    int nx = Float.floatToRawIntBits((onx - node[b + 4]) * mx);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 8]) * my);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 12]) * my);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 16]) * mz);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
+                    if (in <= out) {
+                        int r = Float.floatToRawIntBits(node[b + 24]);
+                        stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                        next = r;
+                    }
+                }
+                if (next != 0) {
+                    // The nearest child entered: down to it at once (its copy on the stack is dropped),
+                    // so that the next node's address does not wait for the stack.
+                    top--;
+                    ref = next;
+                    continue;
+                }
+            } else {
+                // A leaf: its triangles with the double watertight test, as Triangle.intersect.
+                int l = ~ref;
+                final double px = ray[PackedWide.PX], py = ray[PackedWide.PY], pz = ray[PackedWide.PZ];
+                final double tMin = ray[PackedWide.TMIN], tMax = ray[PackedWide.TMAX];
+                final double shx = ray[PackedWide.SHX], shy = ray[PackedWide.SHY], shz = ray[PackedWide.SHZ];
+                final double pkx = ray[PackedWide.PKX], pky = ray[PackedWide.PKY], pkz = ray[PackedWide.PKZ];
+                double best = ray[PackedWide.BEST];
+                int found = -1;
+                int first = leaf[2 * l];
+                int end = first + leaf[2 * l + 1];
+                int s = first;
+                if (kz == 2) {
+                    for (; s < end; s++) {
+                        double t = PackedTriangles.hitT(tri, 9 * s, 0, 1, 2, shx, shy, shz, pkx, pky, pkz);
+                        // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
+                        // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
+                        if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
+                            t = PackedTriangles.planeRule(t, tri, 9 * s, px, py, pz);
+                        }
+                        // NaN (no hit) fails every comparison.
+                        if (t >= tMin && t <= tMax && t < best) {
+                            best = t;
+                            found = s;
+                            if (anyHit) {
+                                s++;
+                                break;
+                            }
+                        }
+                    }
+                } else if (kz == 1) {
+                    for (; s < end; s++) {
+                        double t = PackedTriangles.hitT(tri, 9 * s, 2, 0, 1, shx, shy, shz, pkx, pky, pkz);
+                        // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
+                        // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
+                        if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
+                            t = PackedTriangles.planeRule(t, tri, 9 * s, px, py, pz);
+                        }
+                        // NaN (no hit) fails every comparison.
+                        if (t >= tMin && t <= tMax && t < best) {
+                            best = t;
+                            found = s;
+                            if (anyHit) {
+                                s++;
+                                break;
+                            }
+                        }
+                    }
+                } else {
+                    for (; s < end; s++) {
+                        double t = PackedTriangles.hitT(tri, 9 * s, 1, 2, 0, shx, shy, shz, pkx, pky, pkz);
+                        // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
+                        // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
+                        if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
+                            t = PackedTriangles.planeRule(t, tri, 9 * s, px, py, pz);
+                        }
+                        // NaN (no hit) fails every comparison.
+                        if (t >= tMin && t <= tMax && t < best) {
+                            best = t;
+                            found = s;
+                            if (anyHit) {
+                                s++;
+                                break;
+                            }
+                        }
+                    }
+                }
+                ray[PackedWide.TESTS] += s - first;
+                if (found >= 0) {
+                    ray[PackedWide.BEST] = best;
+                    bestSlot = found;
+                    t1 = PackedWide.exitBits(best);
+                    if (anyHit) {
+                        return bestSlot;
+                    }
                 }
             }
             // Pop the nearest pending child that can still hold a closer hit.
-            ref = 0;
             while (true) {
                 if (top == 0) {
                     return bestSlot;
-                }
-                long e = stack[--top];
-                if ((int) (e >> 32) <= t1 + PackedWide.K) {
-                    ref = (int) e;
-                    break;
-                }
-            }
-        }
-    }
-
-    /**
-     * Octant 1's descent from ref: box tests and pops until a leaf; returns top << 32 | the leaf's
-     * reference, or {@link #DONE}.
-     */
-    private static long down1(float[] node, long[] stack, int top, int ref, int t1, float cnx,
-            float cny, float cnz, float cfx, float cfy, float cfz, float ix, float iy, float iz) {
-        while (true) {
-            if (ref < 0) {
-                return (long) top << 32 | (ref & 0xffffffffL);
-            }
-            int k = ref << 5;
-            int order = Float.floatToRawIntBits(node[k + 28]) >>> 8;
-            int count = Float.floatToRawIntBits(node[k + 30]);
-            // The child entered last (the nearest), or 0 for none: no child is the root, node 0.
-            int next = 0;
-            if (count > 3) {
-                int b = k + (order >>> 6 & 3);
-                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
-                        Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
-                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
-                if (in <= out) {
-                    int r = Float.floatToRawIntBits(node[b + 24]);
-                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
-                    next = r;
-                }
-            }
-            if (count > 2) {
-                int b = k + (order >>> 4 & 3);
-                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
-                        Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
-                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
-                if (in <= out) {
-                    int r = Float.floatToRawIntBits(node[b + 24]);
-                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
-                    next = r;
-                }
-            }
-            {
-                int b = k + (order >>> 2 & 3);
-                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
-                        Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
-                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
-                if (in <= out) {
-                    int r = Float.floatToRawIntBits(node[b + 24]);
-                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
-                    next = r;
-                }
-            }
-            {
-                int b = k + (order & 3);
-                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
-                        Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
-                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
-                if (in <= out) {
-                    int r = Float.floatToRawIntBits(node[b + 24]);
-                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
-                    next = r;
-                }
-            }
-            if (next != 0) {
-                // The nearest child entered: down to it at once (its copy on the stack is dropped),
-                // so that the next node's address does not wait for the stack.
-                top--;
-                ref = next;
-                continue;
-            }
-            // Pop the nearest pending child that can still hold a closer hit.
-            while (true) {
-                if (top == 0) {
-                    return DONE;
                 }
                 long e = stack[--top];
                 if ((int) (e >> 32) <= t1 + PackedWide.K) {
@@ -307,115 +420,171 @@ final class PackedOctants {
 
     /** Octant 2: d.x > 0, d.y < 0, d.z > 0. */
     private static int trace2(float[] node, int root, int[] leaf, double[] tri, long[] stack,
-            double[] ray, int axes, float cnx, float cny, float cnz, float cfx, float cfy, float cfz, float ix,
-            float iy, float iz, boolean anyHit) {
+            double[] ray, int kz, float onx, float ony, float onz, float ofx, float ofy, float ofz,
+            float mx, float my, float mz, boolean anyHit) {
         int t1 = PackedWide.exitBits(Math.min(ray[PackedWide.BEST], ray[PackedWide.TMAX]));
         int top = 0;
         int ref = root;
         int bestSlot = -1;
         while (true) {
-            long r = down2(node, stack, top, ref, t1, cnx, cny, cnz, cfx, cfy, cfz, ix, iy, iz);
-            if (r == DONE) {
-                return bestSlot;
-            }
-            top = (int) (r >>> 32);
-            long h = PackedWide.leaf(~(int) r, leaf, tri, ray, axes, anyHit);
-            if ((int) h >= 0) {
-                bestSlot = (int) h;
-                t1 = (int) (h >>> 32);
-                if (anyHit) {
-                    return bestSlot;
+            if (ref >= 0) {
+                int k = ref << 5;
+                int order = Float.floatToRawIntBits(node[k + 28]) >>> 16;
+                int count = Float.floatToRawIntBits(node[k + 30]);
+                // The child entered last (the nearest), or 0 for none: no child is the root, node 0.
+                int next = 0;
+                if (count > 3) {
+                    int b = k + (order >>> 6 & 3);
+                    int nx = Float.floatToRawIntBits((onx - node[b]) * mx);
+                    int fx = Float.floatToRawIntBits((ofx - node[b + 4]) * mx);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 8]) * my);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 12]) * my);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 16]) * mz);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
+                    if (in <= out) {
+                        int r = Float.floatToRawIntBits(node[b + 24]);
+                        stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                        next = r;
+                    }
+                }
+                if (count > 2) {
+                    int b = k + (order >>> 4 & 3);
+                    int nx = Float.floatToRawIntBits((onx - node[b]) * mx);
+                    int fx = Float.floatToRawIntBits((ofx - node[b + 4]) * mx);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 8]) * my);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 12]) * my);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 16]) * mz);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
+                    if (in <= out) {
+                        int r = Float.floatToRawIntBits(node[b + 24]);
+                        stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                        next = r;
+                    }
+                }
+                {
+                    int b = k + (order >>> 2 & 3);
+                    int nx = Float.floatToRawIntBits((onx - node[b]) * mx);
+                    int fx = Float.floatToRawIntBits((ofx - node[b + 4]) * mx);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 8]) * my);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 12]) * my);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 16]) * mz);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
+                    if (in <= out) {
+                        int r = Float.floatToRawIntBits(node[b + 24]);
+                        stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                        next = r;
+                    }
+                }
+                {
+                    int b = k + (order & 3);
+                    int nx = Float.floatToRawIntBits((onx - node[b]) * mx);
+                    int fx = Float.floatToRawIntBits((ofx - node[b + 4]) * mx);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 8]) * my);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 12]) * my);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 16]) * mz);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
+                    if (in <= out) {
+                        int r = Float.floatToRawIntBits(node[b + 24]);
+                        stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                        next = r;
+                    }
+                }
+                if (next != 0) {
+                    // The nearest child entered: down to it at once (its copy on the stack is dropped),
+                    // so that the next node's address does not wait for the stack.
+                    top--;
+                    ref = next;
+                    continue;
+                }
+            } else {
+                // A leaf: its triangles with the double watertight test, as Triangle.intersect.
+                int l = ~ref;
+                final double px = ray[PackedWide.PX], py = ray[PackedWide.PY], pz = ray[PackedWide.PZ];
+                final double tMin = ray[PackedWide.TMIN], tMax = ray[PackedWide.TMAX];
+                final double shx = ray[PackedWide.SHX], shy = ray[PackedWide.SHY], shz = ray[PackedWide.SHZ];
+                final double pkx = ray[PackedWide.PKX], pky = ray[PackedWide.PKY], pkz = ray[PackedWide.PKZ];
+                double best = ray[PackedWide.BEST];
+                int found = -1;
+                int first = leaf[2 * l];
+                int end = first + leaf[2 * l + 1];
+                int s = first;
+                if (kz == 2) {
+                    for (; s < end; s++) {
+                        double t = PackedTriangles.hitT(tri, 9 * s, 0, 1, 2, shx, shy, shz, pkx, pky, pkz);
+                        // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
+                        // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
+                        if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
+                            t = PackedTriangles.planeRule(t, tri, 9 * s, px, py, pz);
+                        }
+                        // NaN (no hit) fails every comparison.
+                        if (t >= tMin && t <= tMax && t < best) {
+                            best = t;
+                            found = s;
+                            if (anyHit) {
+                                s++;
+                                break;
+                            }
+                        }
+                    }
+                } else if (kz == 1) {
+                    for (; s < end; s++) {
+                        double t = PackedTriangles.hitT(tri, 9 * s, 2, 0, 1, shx, shy, shz, pkx, pky, pkz);
+                        // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
+                        // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
+                        if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
+                            t = PackedTriangles.planeRule(t, tri, 9 * s, px, py, pz);
+                        }
+                        // NaN (no hit) fails every comparison.
+                        if (t >= tMin && t <= tMax && t < best) {
+                            best = t;
+                            found = s;
+                            if (anyHit) {
+                                s++;
+                                break;
+                            }
+                        }
+                    }
+                } else {
+                    for (; s < end; s++) {
+                        double t = PackedTriangles.hitT(tri, 9 * s, 1, 2, 0, shx, shy, shz, pkx, pky, pkz);
+                        // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
+                        // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
+                        if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
+                            t = PackedTriangles.planeRule(t, tri, 9 * s, px, py, pz);
+                        }
+                        // NaN (no hit) fails every comparison.
+                        if (t >= tMin && t <= tMax && t < best) {
+                            best = t;
+                            found = s;
+                            if (anyHit) {
+                                s++;
+                                break;
+                            }
+                        }
+                    }
+                }
+                ray[PackedWide.TESTS] += s - first;
+                if (found >= 0) {
+                    ray[PackedWide.BEST] = best;
+                    bestSlot = found;
+                    t1 = PackedWide.exitBits(best);
+                    if (anyHit) {
+                        return bestSlot;
+                    }
                 }
             }
             // Pop the nearest pending child that can still hold a closer hit.
-            ref = 0;
             while (true) {
                 if (top == 0) {
                     return bestSlot;
-                }
-                long e = stack[--top];
-                if ((int) (e >> 32) <= t1 + PackedWide.K) {
-                    ref = (int) e;
-                    break;
-                }
-            }
-        }
-    }
-
-    /**
-     * Octant 2's descent from ref: box tests and pops until a leaf; returns top << 32 | the leaf's
-     * reference, or {@link #DONE}.
-     */
-    private static long down2(float[] node, long[] stack, int top, int ref, int t1, float cnx,
-            float cny, float cnz, float cfx, float cfy, float cfz, float ix, float iy, float iz) {
-        while (true) {
-            if (ref < 0) {
-                return (long) top << 32 | (ref & 0xffffffffL);
-            }
-            int k = ref << 5;
-            int order = Float.floatToRawIntBits(node[k + 28]) >>> 16;
-            int count = Float.floatToRawIntBits(node[k + 30]);
-            // The child entered last (the nearest), or 0 for none: no child is the root, node 0.
-            int next = 0;
-            if (count > 3) {
-                int b = k + (order >>> 6 & 3);
-                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
-                        Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
-                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
-                if (in <= out) {
-                    int r = Float.floatToRawIntBits(node[b + 24]);
-                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
-                    next = r;
-                }
-            }
-            if (count > 2) {
-                int b = k + (order >>> 4 & 3);
-                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
-                        Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
-                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
-                if (in <= out) {
-                    int r = Float.floatToRawIntBits(node[b + 24]);
-                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
-                    next = r;
-                }
-            }
-            {
-                int b = k + (order >>> 2 & 3);
-                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
-                        Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
-                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
-                if (in <= out) {
-                    int r = Float.floatToRawIntBits(node[b + 24]);
-                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
-                    next = r;
-                }
-            }
-            {
-                int b = k + (order & 3);
-                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
-                        Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
-                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
-                if (in <= out) {
-                    int r = Float.floatToRawIntBits(node[b + 24]);
-                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
-                    next = r;
-                }
-            }
-            if (next != 0) {
-                // The nearest child entered: down to it at once (its copy on the stack is dropped),
-                // so that the next node's address does not wait for the stack.
-                top--;
-                ref = next;
-                continue;
-            }
-            // Pop the nearest pending child that can still hold a closer hit.
-            while (true) {
-                if (top == 0) {
-                    return DONE;
                 }
                 long e = stack[--top];
                 if ((int) (e >> 32) <= t1 + PackedWide.K) {
@@ -428,115 +597,171 @@ final class PackedOctants {
 
     /** Octant 3: d.x < 0, d.y < 0, d.z > 0. */
     private static int trace3(float[] node, int root, int[] leaf, double[] tri, long[] stack,
-            double[] ray, int axes, float cnx, float cny, float cnz, float cfx, float cfy, float cfz, float ix,
-            float iy, float iz, boolean anyHit) {
+            double[] ray, int kz, float onx, float ony, float onz, float ofx, float ofy, float ofz,
+            float mx, float my, float mz, boolean anyHit) {
         int t1 = PackedWide.exitBits(Math.min(ray[PackedWide.BEST], ray[PackedWide.TMAX]));
         int top = 0;
         int ref = root;
         int bestSlot = -1;
         while (true) {
-            long r = down3(node, stack, top, ref, t1, cnx, cny, cnz, cfx, cfy, cfz, ix, iy, iz);
-            if (r == DONE) {
-                return bestSlot;
-            }
-            top = (int) (r >>> 32);
-            long h = PackedWide.leaf(~(int) r, leaf, tri, ray, axes, anyHit);
-            if ((int) h >= 0) {
-                bestSlot = (int) h;
-                t1 = (int) (h >>> 32);
-                if (anyHit) {
-                    return bestSlot;
+            if (ref >= 0) {
+                int k = ref << 5;
+                int order = Float.floatToRawIntBits(node[k + 28]) >>> 24;
+                int count = Float.floatToRawIntBits(node[k + 30]);
+                // The child entered last (the nearest), or 0 for none: no child is the root, node 0.
+                int next = 0;
+                if (count > 3) {
+                    int b = k + (order >>> 6 & 3);
+                    int fx = Float.floatToRawIntBits((ofx - node[b]) * mx);
+                    int nx = Float.floatToRawIntBits((onx - node[b + 4]) * mx);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 8]) * my);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 12]) * my);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 16]) * mz);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
+                    if (in <= out) {
+                        int r = Float.floatToRawIntBits(node[b + 24]);
+                        stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                        next = r;
+                    }
+                }
+                if (count > 2) {
+                    int b = k + (order >>> 4 & 3);
+                    int fx = Float.floatToRawIntBits((ofx - node[b]) * mx);
+                    int nx = Float.floatToRawIntBits((onx - node[b + 4]) * mx);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 8]) * my);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 12]) * my);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 16]) * mz);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
+                    if (in <= out) {
+                        int r = Float.floatToRawIntBits(node[b + 24]);
+                        stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                        next = r;
+                    }
+                }
+                {
+                    int b = k + (order >>> 2 & 3);
+                    int fx = Float.floatToRawIntBits((ofx - node[b]) * mx);
+                    int nx = Float.floatToRawIntBits((onx - node[b + 4]) * mx);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 8]) * my);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 12]) * my);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 16]) * mz);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
+                    if (in <= out) {
+                        int r = Float.floatToRawIntBits(node[b + 24]);
+                        stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                        next = r;
+                    }
+                }
+                {
+                    int b = k + (order & 3);
+                    int fx = Float.floatToRawIntBits((ofx - node[b]) * mx);
+                    int nx = Float.floatToRawIntBits((onx - node[b + 4]) * mx);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 8]) * my);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 12]) * my);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 16]) * mz);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
+                    if (in <= out) {
+                        int r = Float.floatToRawIntBits(node[b + 24]);
+                        stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                        next = r;
+                    }
+                }
+                if (next != 0) {
+                    // The nearest child entered: down to it at once (its copy on the stack is dropped),
+                    // so that the next node's address does not wait for the stack.
+                    top--;
+                    ref = next;
+                    continue;
+                }
+            } else {
+                // A leaf: its triangles with the double watertight test, as Triangle.intersect.
+                int l = ~ref;
+                final double px = ray[PackedWide.PX], py = ray[PackedWide.PY], pz = ray[PackedWide.PZ];
+                final double tMin = ray[PackedWide.TMIN], tMax = ray[PackedWide.TMAX];
+                final double shx = ray[PackedWide.SHX], shy = ray[PackedWide.SHY], shz = ray[PackedWide.SHZ];
+                final double pkx = ray[PackedWide.PKX], pky = ray[PackedWide.PKY], pkz = ray[PackedWide.PKZ];
+                double best = ray[PackedWide.BEST];
+                int found = -1;
+                int first = leaf[2 * l];
+                int end = first + leaf[2 * l + 1];
+                int s = first;
+                if (kz == 2) {
+                    for (; s < end; s++) {
+                        double t = PackedTriangles.hitT(tri, 9 * s, 0, 1, 2, shx, shy, shz, pkx, pky, pkz);
+                        // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
+                        // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
+                        if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
+                            t = PackedTriangles.planeRule(t, tri, 9 * s, px, py, pz);
+                        }
+                        // NaN (no hit) fails every comparison.
+                        if (t >= tMin && t <= tMax && t < best) {
+                            best = t;
+                            found = s;
+                            if (anyHit) {
+                                s++;
+                                break;
+                            }
+                        }
+                    }
+                } else if (kz == 1) {
+                    for (; s < end; s++) {
+                        double t = PackedTriangles.hitT(tri, 9 * s, 2, 0, 1, shx, shy, shz, pkx, pky, pkz);
+                        // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
+                        // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
+                        if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
+                            t = PackedTriangles.planeRule(t, tri, 9 * s, px, py, pz);
+                        }
+                        // NaN (no hit) fails every comparison.
+                        if (t >= tMin && t <= tMax && t < best) {
+                            best = t;
+                            found = s;
+                            if (anyHit) {
+                                s++;
+                                break;
+                            }
+                        }
+                    }
+                } else {
+                    for (; s < end; s++) {
+                        double t = PackedTriangles.hitT(tri, 9 * s, 1, 2, 0, shx, shy, shz, pkx, pky, pkz);
+                        // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
+                        // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
+                        if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
+                            t = PackedTriangles.planeRule(t, tri, 9 * s, px, py, pz);
+                        }
+                        // NaN (no hit) fails every comparison.
+                        if (t >= tMin && t <= tMax && t < best) {
+                            best = t;
+                            found = s;
+                            if (anyHit) {
+                                s++;
+                                break;
+                            }
+                        }
+                    }
+                }
+                ray[PackedWide.TESTS] += s - first;
+                if (found >= 0) {
+                    ray[PackedWide.BEST] = best;
+                    bestSlot = found;
+                    t1 = PackedWide.exitBits(best);
+                    if (anyHit) {
+                        return bestSlot;
+                    }
                 }
             }
             // Pop the nearest pending child that can still hold a closer hit.
-            ref = 0;
             while (true) {
                 if (top == 0) {
                     return bestSlot;
-                }
-                long e = stack[--top];
-                if ((int) (e >> 32) <= t1 + PackedWide.K) {
-                    ref = (int) e;
-                    break;
-                }
-            }
-        }
-    }
-
-    /**
-     * Octant 3's descent from ref: box tests and pops until a leaf; returns top << 32 | the leaf's
-     * reference, or {@link #DONE}.
-     */
-    private static long down3(float[] node, long[] stack, int top, int ref, int t1, float cnx,
-            float cny, float cnz, float cfx, float cfy, float cfz, float ix, float iy, float iz) {
-        while (true) {
-            if (ref < 0) {
-                return (long) top << 32 | (ref & 0xffffffffL);
-            }
-            int k = ref << 5;
-            int order = Float.floatToRawIntBits(node[k + 28]) >>> 24;
-            int count = Float.floatToRawIntBits(node[k + 30]);
-            // The child entered last (the nearest), or 0 for none: no child is the root, node 0.
-            int next = 0;
-            if (count > 3) {
-                int b = k + (order >>> 6 & 3);
-                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
-                        Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
-                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
-                if (in <= out) {
-                    int r = Float.floatToRawIntBits(node[b + 24]);
-                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
-                    next = r;
-                }
-            }
-            if (count > 2) {
-                int b = k + (order >>> 4 & 3);
-                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
-                        Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
-                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
-                if (in <= out) {
-                    int r = Float.floatToRawIntBits(node[b + 24]);
-                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
-                    next = r;
-                }
-            }
-            {
-                int b = k + (order >>> 2 & 3);
-                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
-                        Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
-                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
-                if (in <= out) {
-                    int r = Float.floatToRawIntBits(node[b + 24]);
-                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
-                    next = r;
-                }
-            }
-            {
-                int b = k + (order & 3);
-                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
-                        Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cnz)));
-                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cfz)), t1)) + PackedWide.K;
-                if (in <= out) {
-                    int r = Float.floatToRawIntBits(node[b + 24]);
-                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
-                    next = r;
-                }
-            }
-            if (next != 0) {
-                // The nearest child entered: down to it at once (its copy on the stack is dropped),
-                // so that the next node's address does not wait for the stack.
-                top--;
-                ref = next;
-                continue;
-            }
-            // Pop the nearest pending child that can still hold a closer hit.
-            while (true) {
-                if (top == 0) {
-                    return DONE;
                 }
                 long e = stack[--top];
                 if ((int) (e >> 32) <= t1 + PackedWide.K) {
@@ -549,115 +774,171 @@ final class PackedOctants {
 
     /** Octant 4: d.x > 0, d.y > 0, d.z < 0. */
     private static int trace4(float[] node, int root, int[] leaf, double[] tri, long[] stack,
-            double[] ray, int axes, float cnx, float cny, float cnz, float cfx, float cfy, float cfz, float ix,
-            float iy, float iz, boolean anyHit) {
+            double[] ray, int kz, float onx, float ony, float onz, float ofx, float ofy, float ofz,
+            float mx, float my, float mz, boolean anyHit) {
         int t1 = PackedWide.exitBits(Math.min(ray[PackedWide.BEST], ray[PackedWide.TMAX]));
         int top = 0;
         int ref = root;
         int bestSlot = -1;
         while (true) {
-            long r = down4(node, stack, top, ref, t1, cnx, cny, cnz, cfx, cfy, cfz, ix, iy, iz);
-            if (r == DONE) {
-                return bestSlot;
-            }
-            top = (int) (r >>> 32);
-            long h = PackedWide.leaf(~(int) r, leaf, tri, ray, axes, anyHit);
-            if ((int) h >= 0) {
-                bestSlot = (int) h;
-                t1 = (int) (h >>> 32);
-                if (anyHit) {
-                    return bestSlot;
+            if (ref >= 0) {
+                int k = ref << 5;
+                int order = Float.floatToRawIntBits(node[k + 29]);
+                int count = Float.floatToRawIntBits(node[k + 30]);
+                // The child entered last (the nearest), or 0 for none: no child is the root, node 0.
+                int next = 0;
+                if (count > 3) {
+                    int b = k + (order >>> 6 & 3);
+                    int nx = Float.floatToRawIntBits((onx - node[b]) * mx);
+                    int fx = Float.floatToRawIntBits((ofx - node[b + 4]) * mx);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 8]) * my);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 12]) * my);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 16]) * mz);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
+                    if (in <= out) {
+                        int r = Float.floatToRawIntBits(node[b + 24]);
+                        stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                        next = r;
+                    }
+                }
+                if (count > 2) {
+                    int b = k + (order >>> 4 & 3);
+                    int nx = Float.floatToRawIntBits((onx - node[b]) * mx);
+                    int fx = Float.floatToRawIntBits((ofx - node[b + 4]) * mx);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 8]) * my);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 12]) * my);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 16]) * mz);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
+                    if (in <= out) {
+                        int r = Float.floatToRawIntBits(node[b + 24]);
+                        stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                        next = r;
+                    }
+                }
+                {
+                    int b = k + (order >>> 2 & 3);
+                    int nx = Float.floatToRawIntBits((onx - node[b]) * mx);
+                    int fx = Float.floatToRawIntBits((ofx - node[b + 4]) * mx);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 8]) * my);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 12]) * my);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 16]) * mz);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
+                    if (in <= out) {
+                        int r = Float.floatToRawIntBits(node[b + 24]);
+                        stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                        next = r;
+                    }
+                }
+                {
+                    int b = k + (order & 3);
+                    int nx = Float.floatToRawIntBits((onx - node[b]) * mx);
+                    int fx = Float.floatToRawIntBits((ofx - node[b + 4]) * mx);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 8]) * my);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 12]) * my);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 16]) * mz);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
+                    if (in <= out) {
+                        int r = Float.floatToRawIntBits(node[b + 24]);
+                        stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                        next = r;
+                    }
+                }
+                if (next != 0) {
+                    // The nearest child entered: down to it at once (its copy on the stack is dropped),
+                    // so that the next node's address does not wait for the stack.
+                    top--;
+                    ref = next;
+                    continue;
+                }
+            } else {
+                // A leaf: its triangles with the double watertight test, as Triangle.intersect.
+                int l = ~ref;
+                final double px = ray[PackedWide.PX], py = ray[PackedWide.PY], pz = ray[PackedWide.PZ];
+                final double tMin = ray[PackedWide.TMIN], tMax = ray[PackedWide.TMAX];
+                final double shx = ray[PackedWide.SHX], shy = ray[PackedWide.SHY], shz = ray[PackedWide.SHZ];
+                final double pkx = ray[PackedWide.PKX], pky = ray[PackedWide.PKY], pkz = ray[PackedWide.PKZ];
+                double best = ray[PackedWide.BEST];
+                int found = -1;
+                int first = leaf[2 * l];
+                int end = first + leaf[2 * l + 1];
+                int s = first;
+                if (kz == 2) {
+                    for (; s < end; s++) {
+                        double t = PackedTriangles.hitT(tri, 9 * s, 0, 1, 2, shx, shy, shz, pkx, pky, pkz);
+                        // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
+                        // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
+                        if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
+                            t = PackedTriangles.planeRule(t, tri, 9 * s, px, py, pz);
+                        }
+                        // NaN (no hit) fails every comparison.
+                        if (t >= tMin && t <= tMax && t < best) {
+                            best = t;
+                            found = s;
+                            if (anyHit) {
+                                s++;
+                                break;
+                            }
+                        }
+                    }
+                } else if (kz == 1) {
+                    for (; s < end; s++) {
+                        double t = PackedTriangles.hitT(tri, 9 * s, 2, 0, 1, shx, shy, shz, pkx, pky, pkz);
+                        // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
+                        // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
+                        if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
+                            t = PackedTriangles.planeRule(t, tri, 9 * s, px, py, pz);
+                        }
+                        // NaN (no hit) fails every comparison.
+                        if (t >= tMin && t <= tMax && t < best) {
+                            best = t;
+                            found = s;
+                            if (anyHit) {
+                                s++;
+                                break;
+                            }
+                        }
+                    }
+                } else {
+                    for (; s < end; s++) {
+                        double t = PackedTriangles.hitT(tri, 9 * s, 1, 2, 0, shx, shy, shz, pkx, pky, pkz);
+                        // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
+                        // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
+                        if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
+                            t = PackedTriangles.planeRule(t, tri, 9 * s, px, py, pz);
+                        }
+                        // NaN (no hit) fails every comparison.
+                        if (t >= tMin && t <= tMax && t < best) {
+                            best = t;
+                            found = s;
+                            if (anyHit) {
+                                s++;
+                                break;
+                            }
+                        }
+                    }
+                }
+                ray[PackedWide.TESTS] += s - first;
+                if (found >= 0) {
+                    ray[PackedWide.BEST] = best;
+                    bestSlot = found;
+                    t1 = PackedWide.exitBits(best);
+                    if (anyHit) {
+                        return bestSlot;
+                    }
                 }
             }
             // Pop the nearest pending child that can still hold a closer hit.
-            ref = 0;
             while (true) {
                 if (top == 0) {
                     return bestSlot;
-                }
-                long e = stack[--top];
-                if ((int) (e >> 32) <= t1 + PackedWide.K) {
-                    ref = (int) e;
-                    break;
-                }
-            }
-        }
-    }
-
-    /**
-     * Octant 4's descent from ref: box tests and pops until a leaf; returns top << 32 | the leaf's
-     * reference, or {@link #DONE}.
-     */
-    private static long down4(float[] node, long[] stack, int top, int ref, int t1, float cnx,
-            float cny, float cnz, float cfx, float cfy, float cfz, float ix, float iy, float iz) {
-        while (true) {
-            if (ref < 0) {
-                return (long) top << 32 | (ref & 0xffffffffL);
-            }
-            int k = ref << 5;
-            int order = Float.floatToRawIntBits(node[k + 29]);
-            int count = Float.floatToRawIntBits(node[k + 30]);
-            // The child entered last (the nearest), or 0 for none: no child is the root, node 0.
-            int next = 0;
-            if (count > 3) {
-                int b = k + (order >>> 6 & 3);
-                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
-                        Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
-                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
-                if (in <= out) {
-                    int r = Float.floatToRawIntBits(node[b + 24]);
-                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
-                    next = r;
-                }
-            }
-            if (count > 2) {
-                int b = k + (order >>> 4 & 3);
-                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
-                        Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
-                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
-                if (in <= out) {
-                    int r = Float.floatToRawIntBits(node[b + 24]);
-                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
-                    next = r;
-                }
-            }
-            {
-                int b = k + (order >>> 2 & 3);
-                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
-                        Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
-                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
-                if (in <= out) {
-                    int r = Float.floatToRawIntBits(node[b + 24]);
-                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
-                    next = r;
-                }
-            }
-            {
-                int b = k + (order & 3);
-                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
-                        Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
-                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
-                if (in <= out) {
-                    int r = Float.floatToRawIntBits(node[b + 24]);
-                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
-                    next = r;
-                }
-            }
-            if (next != 0) {
-                // The nearest child entered: down to it at once (its copy on the stack is dropped),
-                // so that the next node's address does not wait for the stack.
-                top--;
-                ref = next;
-                continue;
-            }
-            // Pop the nearest pending child that can still hold a closer hit.
-            while (true) {
-                if (top == 0) {
-                    return DONE;
                 }
                 long e = stack[--top];
                 if ((int) (e >> 32) <= t1 + PackedWide.K) {
@@ -670,115 +951,171 @@ final class PackedOctants {
 
     /** Octant 5: d.x < 0, d.y > 0, d.z < 0. */
     private static int trace5(float[] node, int root, int[] leaf, double[] tri, long[] stack,
-            double[] ray, int axes, float cnx, float cny, float cnz, float cfx, float cfy, float cfz, float ix,
-            float iy, float iz, boolean anyHit) {
+            double[] ray, int kz, float onx, float ony, float onz, float ofx, float ofy, float ofz,
+            float mx, float my, float mz, boolean anyHit) {
         int t1 = PackedWide.exitBits(Math.min(ray[PackedWide.BEST], ray[PackedWide.TMAX]));
         int top = 0;
         int ref = root;
         int bestSlot = -1;
         while (true) {
-            long r = down5(node, stack, top, ref, t1, cnx, cny, cnz, cfx, cfy, cfz, ix, iy, iz);
-            if (r == DONE) {
-                return bestSlot;
-            }
-            top = (int) (r >>> 32);
-            long h = PackedWide.leaf(~(int) r, leaf, tri, ray, axes, anyHit);
-            if ((int) h >= 0) {
-                bestSlot = (int) h;
-                t1 = (int) (h >>> 32);
-                if (anyHit) {
-                    return bestSlot;
+            if (ref >= 0) {
+                int k = ref << 5;
+                int order = Float.floatToRawIntBits(node[k + 29]) >>> 8;
+                int count = Float.floatToRawIntBits(node[k + 30]);
+                // The child entered last (the nearest), or 0 for none: no child is the root, node 0.
+                int next = 0;
+                if (count > 3) {
+                    int b = k + (order >>> 6 & 3);
+                    int fx = Float.floatToRawIntBits((ofx - node[b]) * mx);
+                    int nx = Float.floatToRawIntBits((onx - node[b + 4]) * mx);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 8]) * my);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 12]) * my);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 16]) * mz);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
+                    if (in <= out) {
+                        int r = Float.floatToRawIntBits(node[b + 24]);
+                        stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                        next = r;
+                    }
+                }
+                if (count > 2) {
+                    int b = k + (order >>> 4 & 3);
+                    int fx = Float.floatToRawIntBits((ofx - node[b]) * mx);
+                    int nx = Float.floatToRawIntBits((onx - node[b + 4]) * mx);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 8]) * my);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 12]) * my);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 16]) * mz);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
+                    if (in <= out) {
+                        int r = Float.floatToRawIntBits(node[b + 24]);
+                        stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                        next = r;
+                    }
+                }
+                {
+                    int b = k + (order >>> 2 & 3);
+                    int fx = Float.floatToRawIntBits((ofx - node[b]) * mx);
+                    int nx = Float.floatToRawIntBits((onx - node[b + 4]) * mx);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 8]) * my);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 12]) * my);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 16]) * mz);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
+                    if (in <= out) {
+                        int r = Float.floatToRawIntBits(node[b + 24]);
+                        stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                        next = r;
+                    }
+                }
+                {
+                    int b = k + (order & 3);
+                    int fx = Float.floatToRawIntBits((ofx - node[b]) * mx);
+                    int nx = Float.floatToRawIntBits((onx - node[b + 4]) * mx);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 8]) * my);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 12]) * my);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 16]) * mz);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
+                    if (in <= out) {
+                        int r = Float.floatToRawIntBits(node[b + 24]);
+                        stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                        next = r;
+                    }
+                }
+                if (next != 0) {
+                    // The nearest child entered: down to it at once (its copy on the stack is dropped),
+                    // so that the next node's address does not wait for the stack.
+                    top--;
+                    ref = next;
+                    continue;
+                }
+            } else {
+                // A leaf: its triangles with the double watertight test, as Triangle.intersect.
+                int l = ~ref;
+                final double px = ray[PackedWide.PX], py = ray[PackedWide.PY], pz = ray[PackedWide.PZ];
+                final double tMin = ray[PackedWide.TMIN], tMax = ray[PackedWide.TMAX];
+                final double shx = ray[PackedWide.SHX], shy = ray[PackedWide.SHY], shz = ray[PackedWide.SHZ];
+                final double pkx = ray[PackedWide.PKX], pky = ray[PackedWide.PKY], pkz = ray[PackedWide.PKZ];
+                double best = ray[PackedWide.BEST];
+                int found = -1;
+                int first = leaf[2 * l];
+                int end = first + leaf[2 * l + 1];
+                int s = first;
+                if (kz == 2) {
+                    for (; s < end; s++) {
+                        double t = PackedTriangles.hitT(tri, 9 * s, 0, 1, 2, shx, shy, shz, pkx, pky, pkz);
+                        // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
+                        // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
+                        if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
+                            t = PackedTriangles.planeRule(t, tri, 9 * s, px, py, pz);
+                        }
+                        // NaN (no hit) fails every comparison.
+                        if (t >= tMin && t <= tMax && t < best) {
+                            best = t;
+                            found = s;
+                            if (anyHit) {
+                                s++;
+                                break;
+                            }
+                        }
+                    }
+                } else if (kz == 1) {
+                    for (; s < end; s++) {
+                        double t = PackedTriangles.hitT(tri, 9 * s, 2, 0, 1, shx, shy, shz, pkx, pky, pkz);
+                        // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
+                        // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
+                        if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
+                            t = PackedTriangles.planeRule(t, tri, 9 * s, px, py, pz);
+                        }
+                        // NaN (no hit) fails every comparison.
+                        if (t >= tMin && t <= tMax && t < best) {
+                            best = t;
+                            found = s;
+                            if (anyHit) {
+                                s++;
+                                break;
+                            }
+                        }
+                    }
+                } else {
+                    for (; s < end; s++) {
+                        double t = PackedTriangles.hitT(tri, 9 * s, 1, 2, 0, shx, shy, shz, pkx, pky, pkz);
+                        // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
+                        // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
+                        if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
+                            t = PackedTriangles.planeRule(t, tri, 9 * s, px, py, pz);
+                        }
+                        // NaN (no hit) fails every comparison.
+                        if (t >= tMin && t <= tMax && t < best) {
+                            best = t;
+                            found = s;
+                            if (anyHit) {
+                                s++;
+                                break;
+                            }
+                        }
+                    }
+                }
+                ray[PackedWide.TESTS] += s - first;
+                if (found >= 0) {
+                    ray[PackedWide.BEST] = best;
+                    bestSlot = found;
+                    t1 = PackedWide.exitBits(best);
+                    if (anyHit) {
+                        return bestSlot;
+                    }
                 }
             }
             // Pop the nearest pending child that can still hold a closer hit.
-            ref = 0;
             while (true) {
                 if (top == 0) {
                     return bestSlot;
-                }
-                long e = stack[--top];
-                if ((int) (e >> 32) <= t1 + PackedWide.K) {
-                    ref = (int) e;
-                    break;
-                }
-            }
-        }
-    }
-
-    /**
-     * Octant 5's descent from ref: box tests and pops until a leaf; returns top << 32 | the leaf's
-     * reference, or {@link #DONE}.
-     */
-    private static long down5(float[] node, long[] stack, int top, int ref, int t1, float cnx,
-            float cny, float cnz, float cfx, float cfy, float cfz, float ix, float iy, float iz) {
-        while (true) {
-            if (ref < 0) {
-                return (long) top << 32 | (ref & 0xffffffffL);
-            }
-            int k = ref << 5;
-            int order = Float.floatToRawIntBits(node[k + 29]) >>> 8;
-            int count = Float.floatToRawIntBits(node[k + 30]);
-            // The child entered last (the nearest), or 0 for none: no child is the root, node 0.
-            int next = 0;
-            if (count > 3) {
-                int b = k + (order >>> 6 & 3);
-                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
-                        Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
-                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
-                if (in <= out) {
-                    int r = Float.floatToRawIntBits(node[b + 24]);
-                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
-                    next = r;
-                }
-            }
-            if (count > 2) {
-                int b = k + (order >>> 4 & 3);
-                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
-                        Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
-                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
-                if (in <= out) {
-                    int r = Float.floatToRawIntBits(node[b + 24]);
-                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
-                    next = r;
-                }
-            }
-            {
-                int b = k + (order >>> 2 & 3);
-                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
-                        Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
-                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
-                if (in <= out) {
-                    int r = Float.floatToRawIntBits(node[b + 24]);
-                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
-                    next = r;
-                }
-            }
-            {
-                int b = k + (order & 3);
-                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cny))),
-                        Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
-                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
-                if (in <= out) {
-                    int r = Float.floatToRawIntBits(node[b + 24]);
-                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
-                    next = r;
-                }
-            }
-            if (next != 0) {
-                // The nearest child entered: down to it at once (its copy on the stack is dropped),
-                // so that the next node's address does not wait for the stack.
-                top--;
-                ref = next;
-                continue;
-            }
-            // Pop the nearest pending child that can still hold a closer hit.
-            while (true) {
-                if (top == 0) {
-                    return DONE;
                 }
                 long e = stack[--top];
                 if ((int) (e >> 32) <= t1 + PackedWide.K) {
@@ -791,115 +1128,171 @@ final class PackedOctants {
 
     /** Octant 6: d.x > 0, d.y < 0, d.z < 0. */
     private static int trace6(float[] node, int root, int[] leaf, double[] tri, long[] stack,
-            double[] ray, int axes, float cnx, float cny, float cnz, float cfx, float cfy, float cfz, float ix,
-            float iy, float iz, boolean anyHit) {
+            double[] ray, int kz, float onx, float ony, float onz, float ofx, float ofy, float ofz,
+            float mx, float my, float mz, boolean anyHit) {
         int t1 = PackedWide.exitBits(Math.min(ray[PackedWide.BEST], ray[PackedWide.TMAX]));
         int top = 0;
         int ref = root;
         int bestSlot = -1;
         while (true) {
-            long r = down6(node, stack, top, ref, t1, cnx, cny, cnz, cfx, cfy, cfz, ix, iy, iz);
-            if (r == DONE) {
-                return bestSlot;
-            }
-            top = (int) (r >>> 32);
-            long h = PackedWide.leaf(~(int) r, leaf, tri, ray, axes, anyHit);
-            if ((int) h >= 0) {
-                bestSlot = (int) h;
-                t1 = (int) (h >>> 32);
-                if (anyHit) {
-                    return bestSlot;
+            if (ref >= 0) {
+                int k = ref << 5;
+                int order = Float.floatToRawIntBits(node[k + 29]) >>> 16;
+                int count = Float.floatToRawIntBits(node[k + 30]);
+                // The child entered last (the nearest), or 0 for none: no child is the root, node 0.
+                int next = 0;
+                if (count > 3) {
+                    int b = k + (order >>> 6 & 3);
+                    int nx = Float.floatToRawIntBits((onx - node[b]) * mx);
+                    int fx = Float.floatToRawIntBits((ofx - node[b + 4]) * mx);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 8]) * my);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 12]) * my);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 16]) * mz);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
+                    if (in <= out) {
+                        int r = Float.floatToRawIntBits(node[b + 24]);
+                        stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                        next = r;
+                    }
+                }
+                if (count > 2) {
+                    int b = k + (order >>> 4 & 3);
+                    int nx = Float.floatToRawIntBits((onx - node[b]) * mx);
+                    int fx = Float.floatToRawIntBits((ofx - node[b + 4]) * mx);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 8]) * my);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 12]) * my);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 16]) * mz);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
+                    if (in <= out) {
+                        int r = Float.floatToRawIntBits(node[b + 24]);
+                        stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                        next = r;
+                    }
+                }
+                {
+                    int b = k + (order >>> 2 & 3);
+                    int nx = Float.floatToRawIntBits((onx - node[b]) * mx);
+                    int fx = Float.floatToRawIntBits((ofx - node[b + 4]) * mx);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 8]) * my);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 12]) * my);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 16]) * mz);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
+                    if (in <= out) {
+                        int r = Float.floatToRawIntBits(node[b + 24]);
+                        stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                        next = r;
+                    }
+                }
+                {
+                    int b = k + (order & 3);
+                    int nx = Float.floatToRawIntBits((onx - node[b]) * mx);
+                    int fx = Float.floatToRawIntBits((ofx - node[b + 4]) * mx);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 8]) * my);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 12]) * my);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 16]) * mz);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
+                    if (in <= out) {
+                        int r = Float.floatToRawIntBits(node[b + 24]);
+                        stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                        next = r;
+                    }
+                }
+                if (next != 0) {
+                    // The nearest child entered: down to it at once (its copy on the stack is dropped),
+                    // so that the next node's address does not wait for the stack.
+                    top--;
+                    ref = next;
+                    continue;
+                }
+            } else {
+                // A leaf: its triangles with the double watertight test, as Triangle.intersect.
+                int l = ~ref;
+                final double px = ray[PackedWide.PX], py = ray[PackedWide.PY], pz = ray[PackedWide.PZ];
+                final double tMin = ray[PackedWide.TMIN], tMax = ray[PackedWide.TMAX];
+                final double shx = ray[PackedWide.SHX], shy = ray[PackedWide.SHY], shz = ray[PackedWide.SHZ];
+                final double pkx = ray[PackedWide.PKX], pky = ray[PackedWide.PKY], pkz = ray[PackedWide.PKZ];
+                double best = ray[PackedWide.BEST];
+                int found = -1;
+                int first = leaf[2 * l];
+                int end = first + leaf[2 * l + 1];
+                int s = first;
+                if (kz == 2) {
+                    for (; s < end; s++) {
+                        double t = PackedTriangles.hitT(tri, 9 * s, 0, 1, 2, shx, shy, shz, pkx, pky, pkz);
+                        // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
+                        // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
+                        if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
+                            t = PackedTriangles.planeRule(t, tri, 9 * s, px, py, pz);
+                        }
+                        // NaN (no hit) fails every comparison.
+                        if (t >= tMin && t <= tMax && t < best) {
+                            best = t;
+                            found = s;
+                            if (anyHit) {
+                                s++;
+                                break;
+                            }
+                        }
+                    }
+                } else if (kz == 1) {
+                    for (; s < end; s++) {
+                        double t = PackedTriangles.hitT(tri, 9 * s, 2, 0, 1, shx, shy, shz, pkx, pky, pkz);
+                        // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
+                        // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
+                        if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
+                            t = PackedTriangles.planeRule(t, tri, 9 * s, px, py, pz);
+                        }
+                        // NaN (no hit) fails every comparison.
+                        if (t >= tMin && t <= tMax && t < best) {
+                            best = t;
+                            found = s;
+                            if (anyHit) {
+                                s++;
+                                break;
+                            }
+                        }
+                    }
+                } else {
+                    for (; s < end; s++) {
+                        double t = PackedTriangles.hitT(tri, 9 * s, 1, 2, 0, shx, shy, shz, pkx, pky, pkz);
+                        // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
+                        // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
+                        if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
+                            t = PackedTriangles.planeRule(t, tri, 9 * s, px, py, pz);
+                        }
+                        // NaN (no hit) fails every comparison.
+                        if (t >= tMin && t <= tMax && t < best) {
+                            best = t;
+                            found = s;
+                            if (anyHit) {
+                                s++;
+                                break;
+                            }
+                        }
+                    }
+                }
+                ray[PackedWide.TESTS] += s - first;
+                if (found >= 0) {
+                    ray[PackedWide.BEST] = best;
+                    bestSlot = found;
+                    t1 = PackedWide.exitBits(best);
+                    if (anyHit) {
+                        return bestSlot;
+                    }
                 }
             }
             // Pop the nearest pending child that can still hold a closer hit.
-            ref = 0;
             while (true) {
                 if (top == 0) {
                     return bestSlot;
-                }
-                long e = stack[--top];
-                if ((int) (e >> 32) <= t1 + PackedWide.K) {
-                    ref = (int) e;
-                    break;
-                }
-            }
-        }
-    }
-
-    /**
-     * Octant 6's descent from ref: box tests and pops until a leaf; returns top << 32 | the leaf's
-     * reference, or {@link #DONE}.
-     */
-    private static long down6(float[] node, long[] stack, int top, int ref, int t1, float cnx,
-            float cny, float cnz, float cfx, float cfy, float cfz, float ix, float iy, float iz) {
-        while (true) {
-            if (ref < 0) {
-                return (long) top << 32 | (ref & 0xffffffffL);
-            }
-            int k = ref << 5;
-            int order = Float.floatToRawIntBits(node[k + 29]) >>> 16;
-            int count = Float.floatToRawIntBits(node[k + 30]);
-            // The child entered last (the nearest), or 0 for none: no child is the root, node 0.
-            int next = 0;
-            if (count > 3) {
-                int b = k + (order >>> 6 & 3);
-                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
-                        Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
-                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
-                if (in <= out) {
-                    int r = Float.floatToRawIntBits(node[b + 24]);
-                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
-                    next = r;
-                }
-            }
-            if (count > 2) {
-                int b = k + (order >>> 4 & 3);
-                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
-                        Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
-                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
-                if (in <= out) {
-                    int r = Float.floatToRawIntBits(node[b + 24]);
-                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
-                    next = r;
-                }
-            }
-            {
-                int b = k + (order >>> 2 & 3);
-                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
-                        Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
-                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
-                if (in <= out) {
-                    int r = Float.floatToRawIntBits(node[b + 24]);
-                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
-                    next = r;
-                }
-            }
-            {
-                int b = k + (order & 3);
-                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
-                        Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
-                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
-                if (in <= out) {
-                    int r = Float.floatToRawIntBits(node[b + 24]);
-                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
-                    next = r;
-                }
-            }
-            if (next != 0) {
-                // The nearest child entered: down to it at once (its copy on the stack is dropped),
-                // so that the next node's address does not wait for the stack.
-                top--;
-                ref = next;
-                continue;
-            }
-            // Pop the nearest pending child that can still hold a closer hit.
-            while (true) {
-                if (top == 0) {
-                    return DONE;
                 }
                 long e = stack[--top];
                 if ((int) (e >> 32) <= t1 + PackedWide.K) {
@@ -912,115 +1305,171 @@ final class PackedOctants {
 
     /** Octant 7: d.x < 0, d.y < 0, d.z < 0. */
     private static int trace7(float[] node, int root, int[] leaf, double[] tri, long[] stack,
-            double[] ray, int axes, float cnx, float cny, float cnz, float cfx, float cfy, float cfz, float ix,
-            float iy, float iz, boolean anyHit) {
+            double[] ray, int kz, float onx, float ony, float onz, float ofx, float ofy, float ofz,
+            float mx, float my, float mz, boolean anyHit) {
         int t1 = PackedWide.exitBits(Math.min(ray[PackedWide.BEST], ray[PackedWide.TMAX]));
         int top = 0;
         int ref = root;
         int bestSlot = -1;
         while (true) {
-            long r = down7(node, stack, top, ref, t1, cnx, cny, cnz, cfx, cfy, cfz, ix, iy, iz);
-            if (r == DONE) {
-                return bestSlot;
-            }
-            top = (int) (r >>> 32);
-            long h = PackedWide.leaf(~(int) r, leaf, tri, ray, axes, anyHit);
-            if ((int) h >= 0) {
-                bestSlot = (int) h;
-                t1 = (int) (h >>> 32);
-                if (anyHit) {
-                    return bestSlot;
+            if (ref >= 0) {
+                int k = ref << 5;
+                int order = Float.floatToRawIntBits(node[k + 29]) >>> 24;
+                int count = Float.floatToRawIntBits(node[k + 30]);
+                // The child entered last (the nearest), or 0 for none: no child is the root, node 0.
+                int next = 0;
+                if (count > 3) {
+                    int b = k + (order >>> 6 & 3);
+                    int fx = Float.floatToRawIntBits((ofx - node[b]) * mx);
+                    int nx = Float.floatToRawIntBits((onx - node[b + 4]) * mx);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 8]) * my);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 12]) * my);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 16]) * mz);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
+                    if (in <= out) {
+                        int r = Float.floatToRawIntBits(node[b + 24]);
+                        stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                        next = r;
+                    }
+                }
+                if (count > 2) {
+                    int b = k + (order >>> 4 & 3);
+                    int fx = Float.floatToRawIntBits((ofx - node[b]) * mx);
+                    int nx = Float.floatToRawIntBits((onx - node[b + 4]) * mx);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 8]) * my);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 12]) * my);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 16]) * mz);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
+                    if (in <= out) {
+                        int r = Float.floatToRawIntBits(node[b + 24]);
+                        stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                        next = r;
+                    }
+                }
+                {
+                    int b = k + (order >>> 2 & 3);
+                    int fx = Float.floatToRawIntBits((ofx - node[b]) * mx);
+                    int nx = Float.floatToRawIntBits((onx - node[b + 4]) * mx);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 8]) * my);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 12]) * my);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 16]) * mz);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
+                    if (in <= out) {
+                        int r = Float.floatToRawIntBits(node[b + 24]);
+                        stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                        next = r;
+                    }
+                }
+                {
+                    int b = k + (order & 3);
+                    int fx = Float.floatToRawIntBits((ofx - node[b]) * mx);
+                    int nx = Float.floatToRawIntBits((onx - node[b + 4]) * mx);
+                    int fy = Float.floatToRawIntBits((ofy - node[b + 8]) * my);
+                    int ny = Float.floatToRawIntBits((ony - node[b + 12]) * my);
+                    int fz = Float.floatToRawIntBits((ofz - node[b + 16]) * mz);
+                    int nz = Float.floatToRawIntBits((onz - node[b + 20]) * mz);
+                    int in = Math.max(Math.max(nx, ny), nz);
+                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;
+                    if (in <= out) {
+                        int r = Float.floatToRawIntBits(node[b + 24]);
+                        stack[top++] = (long) in << 32 | (r & 0xffffffffL);
+                        next = r;
+                    }
+                }
+                if (next != 0) {
+                    // The nearest child entered: down to it at once (its copy on the stack is dropped),
+                    // so that the next node's address does not wait for the stack.
+                    top--;
+                    ref = next;
+                    continue;
+                }
+            } else {
+                // A leaf: its triangles with the double watertight test, as Triangle.intersect.
+                int l = ~ref;
+                final double px = ray[PackedWide.PX], py = ray[PackedWide.PY], pz = ray[PackedWide.PZ];
+                final double tMin = ray[PackedWide.TMIN], tMax = ray[PackedWide.TMAX];
+                final double shx = ray[PackedWide.SHX], shy = ray[PackedWide.SHY], shz = ray[PackedWide.SHZ];
+                final double pkx = ray[PackedWide.PKX], pky = ray[PackedWide.PKY], pkz = ray[PackedWide.PKZ];
+                double best = ray[PackedWide.BEST];
+                int found = -1;
+                int first = leaf[2 * l];
+                int end = first + leaf[2 * l + 1];
+                int s = first;
+                if (kz == 2) {
+                    for (; s < end; s++) {
+                        double t = PackedTriangles.hitT(tri, 9 * s, 0, 1, 2, shx, shy, shz, pkx, pky, pkz);
+                        // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
+                        // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
+                        if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
+                            t = PackedTriangles.planeRule(t, tri, 9 * s, px, py, pz);
+                        }
+                        // NaN (no hit) fails every comparison.
+                        if (t >= tMin && t <= tMax && t < best) {
+                            best = t;
+                            found = s;
+                            if (anyHit) {
+                                s++;
+                                break;
+                            }
+                        }
+                    }
+                } else if (kz == 1) {
+                    for (; s < end; s++) {
+                        double t = PackedTriangles.hitT(tri, 9 * s, 2, 0, 1, shx, shy, shz, pkx, pky, pkz);
+                        // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
+                        // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
+                        if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
+                            t = PackedTriangles.planeRule(t, tri, 9 * s, px, py, pz);
+                        }
+                        // NaN (no hit) fails every comparison.
+                        if (t >= tMin && t <= tMax && t < best) {
+                            best = t;
+                            found = s;
+                            if (anyHit) {
+                                s++;
+                                break;
+                            }
+                        }
+                    }
+                } else {
+                    for (; s < end; s++) {
+                        double t = PackedTriangles.hitT(tri, 9 * s, 1, 2, 0, shx, shy, shz, pkx, pky, pkz);
+                        // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
+                        // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
+                        if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
+                            t = PackedTriangles.planeRule(t, tri, 9 * s, px, py, pz);
+                        }
+                        // NaN (no hit) fails every comparison.
+                        if (t >= tMin && t <= tMax && t < best) {
+                            best = t;
+                            found = s;
+                            if (anyHit) {
+                                s++;
+                                break;
+                            }
+                        }
+                    }
+                }
+                ray[PackedWide.TESTS] += s - first;
+                if (found >= 0) {
+                    ray[PackedWide.BEST] = best;
+                    bestSlot = found;
+                    t1 = PackedWide.exitBits(best);
+                    if (anyHit) {
+                        return bestSlot;
+                    }
                 }
             }
             // Pop the nearest pending child that can still hold a closer hit.
-            ref = 0;
             while (true) {
                 if (top == 0) {
                     return bestSlot;
-                }
-                long e = stack[--top];
-                if ((int) (e >> 32) <= t1 + PackedWide.K) {
-                    ref = (int) e;
-                    break;
-                }
-            }
-        }
-    }
-
-    /**
-     * Octant 7's descent from ref: box tests and pops until a leaf; returns top << 32 | the leaf's
-     * reference, or {@link #DONE}.
-     */
-    private static long down7(float[] node, long[] stack, int top, int ref, int t1, float cnx,
-            float cny, float cnz, float cfx, float cfy, float cfz, float ix, float iy, float iz) {
-        while (true) {
-            if (ref < 0) {
-                return (long) top << 32 | (ref & 0xffffffffL);
-            }
-            int k = ref << 5;
-            int order = Float.floatToRawIntBits(node[k + 29]) >>> 24;
-            int count = Float.floatToRawIntBits(node[k + 30]);
-            // The child entered last (the nearest), or 0 for none: no child is the root, node 0.
-            int next = 0;
-            if (count > 3) {
-                int b = k + (order >>> 6 & 3);
-                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
-                        Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
-                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
-                if (in <= out) {
-                    int r = Float.floatToRawIntBits(node[b + 24]);
-                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
-                    next = r;
-                }
-            }
-            if (count > 2) {
-                int b = k + (order >>> 4 & 3);
-                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
-                        Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
-                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
-                if (in <= out) {
-                    int r = Float.floatToRawIntBits(node[b + 24]);
-                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
-                    next = r;
-                }
-            }
-            {
-                int b = k + (order >>> 2 & 3);
-                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
-                        Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
-                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
-                if (in <= out) {
-                    int r = Float.floatToRawIntBits(node[b + 24]);
-                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
-                    next = r;
-                }
-            }
-            {
-                int b = k + (order & 3);
-                int in = Math.max(Math.max(Float.floatToRawIntBits(Math.fma(node[b + 4], ix, cnx)), Float.floatToRawIntBits(Math.fma(node[b + 12], iy, cny))),
-                        Float.floatToRawIntBits(Math.fma(node[b + 20], iz, cnz)));
-                int out = Math.min(Math.min(Float.floatToRawIntBits(Math.fma(node[b], ix, cfx)), Float.floatToRawIntBits(Math.fma(node[b + 8], iy, cfy))),
-                            Math.min(Float.floatToRawIntBits(Math.fma(node[b + 16], iz, cfz)), t1)) + PackedWide.K;
-                if (in <= out) {
-                    int r = Float.floatToRawIntBits(node[b + 24]);
-                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);
-                    next = r;
-                }
-            }
-            if (next != 0) {
-                // The nearest child entered: down to it at once (its copy on the stack is dropped),
-                // so that the next node's address does not wait for the stack.
-                top--;
-                ref = next;
-                continue;
-            }
-            // Pop the nearest pending child that can still hold a closer hit.
-            while (true) {
-                if (top == 0) {
-                    return DONE;
                 }
                 long e = stack[--top];
                 if ((int) (e >> 32) <= t1 + PackedWide.K) {

@@ -109,12 +109,16 @@ final class PackedTriangles implements Mesh.Engine {
         final double dx = ray.d.x, dy = ray.d.y, dz = ray.d.z;
         final boolean gx = dx < 0, gy = dy < 0, gz = dz < 0;
         final int octant = (gx ? 1 : 0) | (gy ? 2 : 0) | (gz ? 4 : 0);
-        // Slab distance b·i + c with i = 1/d in float, c below −o·i for near planes, above for far ones.
-        final float ix = (float) (1.0 / dx), iy = (float) (1.0 / dy), iz = (float) (1.0 / dz);
-        final double qx = -px * ix, qy = -py * iy, qz = -pz * iz;
-        final float cnx = PackedWide.below(qx), cfx = PackedWide.above(qx);
-        final float cny = PackedWide.below(qy), cfy = PackedWide.above(qy);
-        final float cnz = PackedWide.below(qz), cfz = PackedWide.above(qz);
+        // Slab distance (o' − b)·m with m = −1/d in float and o' a float strictly on the safe side of o:
+        // for near planes above o when d > 0 (below when d < 0), for far ones the other way round, so
+        // that no computed near distance exceeds the exact one and no far one falls short of it.
+        final float mx = -(float) (1.0 / dx), my = -(float) (1.0 / dy), mz = -(float) (1.0 / dz);
+        final float lx = PackedWide.below(px), hx = PackedWide.above(px);
+        final float ly = PackedWide.below(py), hy = PackedWide.above(py);
+        final float lz = PackedWide.below(pz), hz = PackedWide.above(pz);
+        final float onx = gx ? lx : hx, ofx = gx ? hx : lx;
+        final float ony = gy ? ly : hy, ofy = gy ? hy : ly;
+        final float onz = gz ? lz : hz, ofz = gz ? hz : lz;
         // Ray space of the watertight test, as in Triangle.intersect.
         final int kz = largestAxis(dx, dy, dz);
         final int kx = kz == 2 ? 0 : kz + 1;
@@ -144,8 +148,8 @@ final class PackedTriangles implements Mesh.Engine {
         r[PackedWide.PKY] = pky;
         r[PackedWide.PKZ] = pkz;
         r[PackedWide.TESTS] = 0;
-        int slot = PackedOctants.trace(octant, wide, tree.leaf, tri, frames.pending, r,
-                kx | ky << 2 | kz << 4, cnx, cny, cnz, cfx, cfy, cfz, ix, iy, iz, anyHit);
+        int slot = PackedOctants.trace(octant, wide, tree.leaf, tri, frames.pending, r, kz, onx, ony, onz, ofx,
+                ofy, ofz, mx, my, mz, anyHit);
         return finish(rec, anyHit, r[PackedWide.BEST], slot, (int) r[PackedWide.TESTS], kx, ky, kz, shx, shy, shz, pkx,
                 pky, pkz);
     }

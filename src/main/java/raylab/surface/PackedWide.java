@@ -24,9 +24,12 @@ final class PackedWide {
     static final int NODE = 32;
     /**
      * Widening of the box test, in units in the last place: a child is entered when
-     * entry − K ≤ exit as float bits. Entry and exit are each within (1 + u)⁴ of their exact values
-     * (u = 2⁻²⁴: the difference, d to float, 1/d, the product), and K ulps add at least a factor
-     * 1 + K·u ≥ (1 + u)⁴/(1 − u)⁴ to a positive float.
+     * entry − K ≤ exit as float bits. A computed slab distance (o' − b)·m is within (1 + 1.01u)³ of
+     * (o' − b)·(−1/d) (u = 2⁻²⁴: the difference, −1/d rounded to double then to float, the product),
+     * and o' lies on the safe side of o, so an entry is at most t·(1 + 3.04u) and an exit at least
+     * t·(1 − 3.04u) where t ≥ 0; K ulps add at least a factor 1 + K·u to a positive float, more than
+     * the 1 + 6.1u between them (or, in the subnormal range, where a product's rounding is absolute,
+     * more than its 2⁻¹⁵⁰ twice).
      */
     static final int K = 16;
 
@@ -189,62 +192,25 @@ final class PackedWide {
         return Float.floatToRawIntBits(BvhBuilder.up(t));
     }
 
-    /** Slots of the per-thread ray array of the leaf test ({@link #leaf}). */
+    /**
+     * Slots of the per-thread ray array of the leaf test ({@link PackedOctants}): origin, tMin, tMax,
+     * the closest hit so far, the shear and the origin in ray space (as {@link Triangle#intersect}), the
+     * count of triangle tests.
+     */
     static final int PX = 0, PY = 1, PZ = 2, TMIN = 3, TMAX = 4, BEST = 5, SHX = 6, SHY = 7, SHZ = 8, PKX = 9,
             PKY = 10, PKZ = 11, TESTS = 12, RAY = 13;
 
     /**
-     * The triangles of leaf l, each with the double watertight test ({@link PackedTriangles#hitT}
-     * and the plane rule, as {@link Triangle#intersect}), for the ray in {@code ray} (origin,
-     * tMin, tMax, closest hit so far, shear and origin in ray space; axes = kx | ky << 2 | kz << 4).
-     * Keeps the first hit at the smallest t below the closest hit so far: returns its slot in the
-     * low 32 bits and the new far end of the search ({@link #exitBits}) in the high ones, and
-     * stores its t in {@code ray[BEST]}; returns −1 in the low bits when no triangle is closer. Kept
-     * out of the octant loops so that the ray-space values do not take registers there.
-     */
-    static long leaf(int l, int[] leaf, double[] tri, double[] ray, int axes, boolean anyHit) {
-        final int kx = axes & 3, ky = axes >> 2 & 3, kz = axes >> 4;
-        final double px = ray[PX], py = ray[PY], pz = ray[PZ], tMin = ray[TMIN], tMax = ray[TMAX];
-        final double shx = ray[SHX], shy = ray[SHY], shz = ray[SHZ], pkx = ray[PKX], pky = ray[PKY], pkz = ray[PKZ];
-        double best = ray[BEST];
-        int found = -1;
-        int first = leaf[2 * l];
-        int end = first + leaf[2 * l + 1];
-        int s = first;
-        while (s < end) {
-            double t = PackedTriangles.hitT(tri, 9 * s, kx, ky, kz, shx, shy, shz, pkx, pky, pkz);
-            if (t == t) { // a hit (not NaN): the plane rule
-                t = PackedTriangles.planeRule(t, tri, 9 * s, px, py, pz);
-            }
-            // NaN (no hit) fails every comparison.
-            if (t >= tMin && t <= tMax && t < best) {
-                best = t;
-                found = s;
-                if (anyHit) {
-                    s++;
-                    break;
-                }
-            }
-            s++;
-        }
-        ray[TESTS] += s - first;
-        if (found < 0) {
-            return 0xffffffffL;
-        }
-        ray[BEST] = best;
-        return (long) exitBits(best) << 32 | found;
-    }
-
-    /**
-     * A float below the exact value that the double q approximates (q = −o·i, one rounding in
-     * double): q lowered by 2⁻²²·|q| + 2⁻¹⁴⁰, more than the double's error and the rounding to float
-     * (half a float ulp: at most 2⁻²⁴·|q|, or 2⁻¹⁵⁰ below the normal range) together. Branch-free.
+     * A float strictly below q (an origin coordinate, |q| ≤ 2⁶⁰): q lowered by 2⁻²²·|q| + 2⁻¹⁴⁰ in
+     * double, more than the double's rounding and the rounding to float (half a float ulp: at most
+     * 2⁻²⁴·|q|, or 2⁻¹⁵⁰ below the normal range) together. Branch-free, so rays whose origins differ
+     * (shadow rays) pay no mispredicted branch.
      */
     static float below(double q) {
         return (float) (q - Math.abs(q) * 0x1p-22 - 0x1p-140);
     }
 
-    /** A float above the exact value that the double q approximates (as {@link #below}). */
+    /** A float strictly above q (as {@link #below}). */
     static float above(double q) {
         return (float) (q + Math.abs(q) * 0x1p-22 + 0x1p-140);
     }

@@ -37,38 +37,40 @@ public final class OctantTraversalSource {
                  * The packed engine's 4-wide float traversal, one copy per ray octant (instructor-only, kept out
                  * of the starter with {@code PackedTriangles}). Octant o has bit 1 set when d.x &lt; 0, bit 2 when
                  * d.y &lt; 0, bit 4 when d.z &lt; 0; in its copy the near and far planes of every axis sit at
-                 * constant offsets. A slab distance is one FMA, b·i + c, with i = 1/d rounded to float and c a
-                 * float below −o·i for near planes, above it for far ones; the distances are compared as
-                 * their float bits, as ints. Node layout and the proof that no hit is lost: {@link PackedWide}
-                 * and docs/mesh-engine.md.
+                 * constant offsets. A slab distance is a subtraction and a product, (o' − b)·m, with m = −1/d
+                 * rounded to float and o' the origin rounded to a float on the safe side (above or below o: nearer
+                 * than o for near planes, farther for far ones); the distances are compared as their float bits,
+                 * as ints. Node layout and the proof that no hit is lost: {@link PackedWide} and
+                 * docs/mesh-engine.md.
                  *
-                 * <p>Each octant has two methods: {@code traceN} tests the leaves ({@link PackedWide#leaf}, the
-                 * double watertight test) and pops pending children after them; {@code downN} tests boxes and
-                 * descends until it reaches a leaf, and calls nothing, so that its loop keeps the ray in
-                 * registers. Pending children are longs: entry distance bits &lt;&lt; 32 | reference.
+                 * <p>Each octant has one method, {@code traceN}: one loop that tests a node's boxes and enters the
+                 * nearest child at once, or tests a leaf's triangles with the double watertight test
+                 * ({@link PackedTriangles#hitT} and the plane rule, as {@link Triangle#intersect}), written out
+                 * for each ray-space axis order so that the vertex offsets are constants, then pops the next
+                 * pending child. Pending children are longs: entry distance bits &lt;&lt; 32 | reference.
                  */
                 final class PackedOctants {
-                    /** What a descent returns when the stack is empty: no leaf is left. */
-                    static final long DONE = Long.MIN_VALUE;
-
                     private PackedOctants() {
                     }
 
                     /**
                      * Closest (or any) hit below the closest hit so far ({@code ray[PackedWide.BEST]}): returns the
                      * leaf slot of the hit triangle, or −1 for none; {@code ray} holds the ray for the leaves
-                     * ({@link PackedWide#leaf}) and gets the new closest hit. The ray is given in float for the
-                     * tree: c*: below −o·i for near planes (cn*), above for far ones (cf*); i*: 1/d.
+                     * (PackedWide's slots) and gets the new closest hit and the count of triangle tests. kz: the
+                     * ray-space axis of the watertight test (the largest direction component). The ray is given
+                     * in float for the tree: o*: the origin rounded for near planes (on*) and far ones (of*); m*:
+                     * −1/d.
                      */
                     static int trace(int octant, PackedWide wide, int[] leaf, double[] tri, long[] stack,
-                            double[] ray, int axes, float cnx, float cny, float cnz, float cfx, float cfy, float cfz, float ix,
-                            float iy, float iz, boolean anyHit) {
+                            double[] ray, int kz, float onx, float ony, float onz, float ofx, float ofy, float ofz,
+                            float mx, float my, float mz, boolean anyHit) {
                         switch (octant) {
                 """);
         for (int o = 0; o < 8; o++) {
             s.append("            case ").append(o).append(":\n");
-            s.append("                return trace").append(o).append("(wide.node, wide.root, leaf, tri, stack, ray, axes, cnx, cny, cnz,\n");
-            s.append("                        cfx, cfy, cfz, ix, iy, iz, anyHit);\n");
+            s.append("                return trace").append(o)
+                    .append("(wide.node, wide.root, leaf, tri, stack, ray, kz, onx, ony, onz, ofx, ofy, ofz,\n");
+            s.append("                        mx, my, mz, anyHit);\n");
         }
         s.append("""
                             default:
@@ -83,74 +85,63 @@ public final class OctantTraversalSource {
         return s.toString();
     }
 
-    /** One octant's traversal: the leaf loop and the descent. */
+    /** One octant's traversal: box tests, leaf tests and pops in one loop. */
     static String octant(int o) {
         boolean nx = (o & 1) != 0, ny = (o & 2) != 0, nz = (o & 4) != 0;
         String body = """
 
                     /** Octant %1$d: d.x %2$s 0, d.y %3$s 0, d.z %4$s 0. */
                     private static int trace%1$d(float[] node, int root, int[] leaf, double[] tri, long[] stack,
-                            double[] ray, int axes, float cnx, float cny, float cnz, float cfx, float cfy, float cfz, float ix,
-                            float iy, float iz, boolean anyHit) {
+                            double[] ray, int kz, float onx, float ony, float onz, float ofx, float ofy, float ofz,
+                            float mx, float my, float mz, boolean anyHit) {
                         int t1 = PackedWide.exitBits(Math.min(ray[PackedWide.BEST], ray[PackedWide.TMAX]));
                         int top = 0;
                         int ref = root;
                         int bestSlot = -1;
                         while (true) {
-                            long r = down%1$d(node, stack, top, ref, t1, cnx, cny, cnz, cfx, cfy, cfz, ix, iy, iz);
-                            if (r == DONE) {
-                                return bestSlot;
-                            }
-                            top = (int) (r >>> 32);
-                            long h = PackedWide.leaf(~(int) r, leaf, tri, ray, axes, anyHit);
-                            if ((int) h >= 0) {
-                                bestSlot = (int) h;
-                                t1 = (int) (h >>> 32);
-                                if (anyHit) {
-                                    return bestSlot;
+                            if (ref >= 0) {
+                                int k = ref << 5;
+                                int order = Float.floatToRawIntBits(node[k + %5$d])%6$s;
+                                int count = Float.floatToRawIntBits(node[k + 30]);
+                                // The child entered last (the nearest), or 0 for none: no child is the root, node 0.
+                                int next = 0;
+                %7$s                if (next != 0) {
+                                    // The nearest child entered: down to it at once (its copy on the stack is dropped),
+                                    // so that the next node's address does not wait for the stack.
+                                    top--;
+                                    ref = next;
+                                    continue;
                                 }
-                            }
-                            // Pop the nearest pending child that can still hold a closer hit.
-                            ref = 0;
-                            while (true) {
-                                if (top == 0) {
-                                    return bestSlot;
+                            } else {
+                                // A leaf: its triangles with the double watertight test, as Triangle.intersect.
+                                int l = ~ref;
+                                final double px = ray[PackedWide.PX], py = ray[PackedWide.PY], pz = ray[PackedWide.PZ];
+                                final double tMin = ray[PackedWide.TMIN], tMax = ray[PackedWide.TMAX];
+                                final double shx = ray[PackedWide.SHX], shy = ray[PackedWide.SHY], shz = ray[PackedWide.SHZ];
+                                final double pkx = ray[PackedWide.PKX], pky = ray[PackedWide.PKY], pkz = ray[PackedWide.PKZ];
+                                double best = ray[PackedWide.BEST];
+                                int found = -1;
+                                int first = leaf[2 * l];
+                                int end = first + leaf[2 * l + 1];
+                                int s = first;
+                                if (kz == 2) {
+                %8$s                } else if (kz == 1) {
+                %9$s                } else {
+                %10$s                }
+                                ray[PackedWide.TESTS] += s - first;
+                                if (found >= 0) {
+                                    ray[PackedWide.BEST] = best;
+                                    bestSlot = found;
+                                    t1 = PackedWide.exitBits(best);
+                                    if (anyHit) {
+                                        return bestSlot;
+                                    }
                                 }
-                                long e = stack[--top];
-                                if ((int) (e >> 32) <= t1 + PackedWide.K) {
-                                    ref = (int) e;
-                                    break;
-                                }
-                            }
-                        }
-                    }
-
-                    /**
-                     * Octant %1$d's descent from ref: box tests and pops until a leaf; returns top << 32 | the leaf's
-                     * reference, or {@link #DONE}.
-                     */
-                    private static long down%1$d(float[] node, long[] stack, int top, int ref, int t1, float cnx,
-                            float cny, float cnz, float cfx, float cfy, float cfz, float ix, float iy, float iz) {
-                        while (true) {
-                            if (ref < 0) {
-                                return (long) top << 32 | (ref & 0xffffffffL);
-                            }
-                            int k = ref << 5;
-                            int order = Float.floatToRawIntBits(node[k + %5$d])%6$s;
-                            int count = Float.floatToRawIntBits(node[k + 30]);
-                            // The child entered last (the nearest), or 0 for none: no child is the root, node 0.
-                            int next = 0;
-                %7$s            if (next != 0) {
-                                // The nearest child entered: down to it at once (its copy on the stack is dropped),
-                                // so that the next node's address does not wait for the stack.
-                                top--;
-                                ref = next;
-                                continue;
                             }
                             // Pop the nearest pending child that can still hold a closer hit.
                             while (true) {
                                 if (top == 0) {
-                                    return DONE;
+                                    return bestSlot;
                                 }
                                 long e = stack[--top];
                                 if ((int) (e >> 32) <= t1 + PackedWide.K) {
@@ -167,29 +158,67 @@ public final class OctantTraversalSource {
             slots.append(slot(j, nx, ny, nz));
         }
         return String.format(body, o, nx ? "<" : ">", ny ? "<" : ">", nz ? "<" : ">", 28 + (o >> 2),
-                (o & 3) == 0 ? "" : " >>> " + 8 * (o & 3), slots);
+                (o & 3) == 0 ? "" : " >>> " + 8 * (o & 3), slots, leafLoop(0, 1, 2), leafLoop(2, 0, 1),
+                leafLoop(1, 2, 0));
     }
 
-    /** The box test of the child at visit position j, and its push when the ray enters the box. */
+    /**
+     * The box test of the child at visit position j, and its push when the ray enters the box. The
+     * six planes are read in storage order (min x, max x, min y, ..., max z at b, b + 4, ..., b + 20),
+     * so that the first read is the lowest offset: the JIT then checks the bounds of all seven reads
+     * (with the reference at b + 24) with two comparisons.
+     */
     static String slot(int j, boolean nx, boolean ny, boolean nz) {
         String sel = j == 0 ? "(order & 3)" : "(order >>> " + 2 * j + " & 3)";
-        return "            " + (j == 3 ? "if (count > 3) " : j == 2 ? "if (count > 2) " : "") + "{\n"
-                + "                int b = k + " + sel + ";\n"
-                + "                int in = Math.max(Math.max(" + plane(nx ? 4 : 0, "n", "x") + ", " + plane(ny ? 12 : 8, "n", "y")
-                + "),\n                        " + plane(nz ? 20 : 16, "n", "z") + ");\n"
-                + "                int out = Math.min(Math.min(" + plane(nx ? 0 : 4, "f", "x") + ", " + plane(ny ? 8 : 12, "f", "y")
-                + "),\n                            Math.min(" + plane(nz ? 16 : 20, "f", "z") + ", t1)) + PackedWide.K;\n"
-                + "                if (in <= out) {\n"
-                + "                    int r = Float.floatToRawIntBits(node[b + 24]);\n"
-                + "                    stack[top++] = (long) in << 32 | (r & 0xffffffffL);\n"
-                + "                    next = r;\n"
-                + "                }\n"
-                + "            }\n";
+        StringBuilder t = new StringBuilder();
+        t.append("                ").append(j == 3 ? "if (count > 3) " : j == 2 ? "if (count > 2) " : "").append("{\n");
+        t.append("                    int b = k + ").append(sel).append(";\n");
+        String[] axes = {"x", "y", "z"};
+        boolean[] neg = {nx, ny, nz};
+        for (int a = 0; a < 3; a++) {
+            // min plane: near when d > 0; max plane: near when d < 0.
+            t.append("                    int ").append(neg[a] ? "f" : "n").append(axes[a]).append(" = ")
+                    .append(plane(8 * a, neg[a] ? "f" : "n", axes[a])).append(";\n");
+            t.append("                    int ").append(neg[a] ? "n" : "f").append(axes[a]).append(" = ")
+                    .append(plane(8 * a + 4, neg[a] ? "n" : "f", axes[a])).append(";\n");
+        }
+        t.append("                    int in = Math.max(Math.max(nx, ny), nz);\n");
+        t.append("                    int out = Math.min(Math.min(fx, fy), Math.min(fz, t1)) + PackedWide.K;\n");
+        t.append("                    if (in <= out) {\n"
+                + "                        int r = Float.floatToRawIntBits(node[b + 24]);\n"
+                + "                        stack[top++] = (long) in << 32 | (r & 0xffffffffL);\n"
+                + "                        next = r;\n"
+                + "                    }\n"
+                + "                }\n");
+        return t.toString();
     }
 
-    /** A slab distance b·(1/d) + c as float bits: one FMA. */
+    /** A slab distance (o' − b)·m as float bits: a subtraction (the load folded in) and a product. */
     static String plane(int offset, String side, String axis) {
-        return "Float.floatToRawIntBits(Math.fma(node[b" + (offset == 0 ? "" : " + " + offset) + "], i" + axis + ", c" + side
-                + axis + "))";
+        return "Float.floatToRawIntBits((o" + side + axis + " - node[b" + (offset == 0 ? "" : " + " + offset) + "]) * m"
+                + axis + ")";
+    }
+
+    /** A leaf's triangles for ray-space axes kx, ky, kz (constant vertex offsets). */
+    static String leafLoop(int kx, int ky, int kz) {
+        return String.format("""
+                                    for (; s < end; s++) {
+                                        double t = PackedTriangles.hitT(tri, 9 * s, %d, %d, %d, shx, shy, shz, pkx, pky, pkz);
+                                        // A hit (not NaN) meets the plane rule; with tMin > 0 only if it is in range,
+                                        // since the rule gives t, 0 or NaN and neither 0 nor NaN is then in range.
+                                        if (t == t && (tMin <= 0 || t >= tMin && t <= tMax && t < best)) {
+                                            t = PackedTriangles.planeRule(t, tri, 9 * s, px, py, pz);
+                                        }
+                                        // NaN (no hit) fails every comparison.
+                                        if (t >= tMin && t <= tMax && t < best) {
+                                            best = t;
+                                            found = s;
+                                            if (anyHit) {
+                                                s++;
+                                                break;
+                                            }
+                                        }
+                                    }
+                """, kx, ky, kz);
     }
 }

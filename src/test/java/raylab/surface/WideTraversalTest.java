@@ -115,27 +115,28 @@ class WideTraversalTest {
     }
 
     @Test
-    void theSlabConstantsBoundMinusOriginTimesInverseDirection() {
-        // c below −p·i for near planes, above for far ones, for p and d over the whole float range.
-        long seed = 20261202;
+    void theRoundedOriginsLieStrictlyOnEitherSideOfTheOrigin() {
+        // below(p) < p < above(p) exactly, for p over the traversal's range (|p| ≤ 2⁶⁰, down to 2⁻¹⁰⁷⁴),
+        // and 0 and −0: a far plane's distance (o' − b)·m is then never 0 for a box the ray is in.
+        long seed = 20261203;
         SplittableRandom r = new SplittableRandom(seed);
         for (int n = 0; n < 200_000; n++) {
-            double p = switch (n % 4) {
+            double p = switch (n % 5) {
                 case 0 -> r.nextDouble(-10, 10);
                 case 1 -> Math.scalb(r.nextDouble(-1, 1), r.nextInt(-200, 61));
-                case 2 -> n % 8 == 2 ? 0.0 : Math.scalb(1.0, r.nextInt(-1074, 61)) * (r.nextBoolean() ? 1 : -1);
+                case 2 -> n % 10 == 2 ? 0.0 : n % 10 == 7 ? -0.0
+                        : Math.scalb(1.0, r.nextInt(-1074, 61)) * (r.nextBoolean() ? 1 : -1);
+                case 3 -> (double) (float) Math.scalb(r.nextDouble(-1, 1), r.nextInt(-150, 61)); // a float
                 default -> Math.nextUp(Math.scalb((double) r.nextInt(-1000, 1000), r.nextInt(-30, 40)));
             };
-            double d = Math.scalb(r.nextDouble(1, 2), r.nextInt(-30, 30)) * (r.nextBoolean() ? 1 : -1);
-            float i = (float) (1.0 / d);
-            double q = -p * i;
-            BigDecimal exact = new BigDecimal(p).multiply(new BigDecimal(i)).negate();
-            float below = PackedWide.below(q);
-            float above = PackedWide.above(q);
-            String ctx = "seed " + seed + " #" + n + ": p " + p + ", d " + d + ", i " + i;
-            assertTrue(new BigDecimal(below).compareTo(exact) < 0, ctx + ": below " + below + " not below " + exact);
-            assertTrue(new BigDecimal(above).compareTo(exact) > 0, ctx + ": above " + above + " not above " + exact);
+            BigDecimal exact = new BigDecimal(p);
+            float below = PackedWide.below(p);
+            float above = PackedWide.above(p);
+            String ctx = "seed " + seed + " #" + n + ": p " + p;
+            assertTrue(new BigDecimal(below).compareTo(exact) < 0, ctx + ": below " + below + " not below p");
+            assertTrue(new BigDecimal(above).compareTo(exact) > 0, ctx + ": above " + above + " not above p");
         }
+        assertTrue(PackedWide.below(0x1p60) < 0x1p60 && PackedWide.above(-0x1p60) > -0x1p60, "at the bounds");
     }
 
     /**
@@ -220,6 +221,122 @@ class WideTraversalTest {
                 ties[0], wide);
         assertTrue(hits > 500, "seed " + seed + ": too few hits to mean anything: " + hits);
         assertTrue(wide > 1500, "seed " + seed + ": too few rays through the 4-wide traversal: " + wide);
+    }
+
+    /**
+     * Origins a double step, half a float step or a float step from the plane of a 4-wide box (or
+     * on it), so that rounding the origin to float (PackedWide.below and above) decides whether the
+     * ray is in the box; directions toward the mesh, along the plane (2⁻³⁰ across it) and away from
+     * it; tMin 0, the smallest double or 10⁻⁴ (the plane rule's shortcut for tMin &gt; 0). The tree
+     * against a loop over Triangle (closest and any hit), and the 4-wide traversal against the double
+     * one, bit for bit.
+     */
+    @ParameterizedTest(name = "seed {0}")
+    @ValueSource(longs = {11, 12, 13, 14, 15, 16})
+    void originsBetweenFloatsNextToBoxPlanesAgreeWithALinearLoop(long seed) {
+        List<Triangle> tris = MeshEngineTest.randomMesh(seed);
+        Mesh mesh = new Mesh(tris, "mesh");
+        PackedTriangles engine = (PackedTriangles) mesh.packedEngine();
+        float[] node = engine.wide().node;
+        SplittableRandom r = new SplittableRandom(seed * 131 + 5);
+        BoundingBox box = mesh.boundingBox();
+        Vec3 mid = box.min.plus(box.max).times(0.5);
+        int hits = 0;
+        int wide = 0;
+        int[] ties = {0};
+        double[] tMins = {0, Double.MIN_VALUE, 1e-4};
+        for (int n = 0; n < 3000; n++) {
+            Triangle t = tris.get(r.nextInt(tris.size()));
+            Vec3 inside = t.a.plus(t.b.minus(t.a).times(r.nextDouble(0, 0.5))).plus(t.c.minus(t.a).times(r.nextDouble(0, 0.5)));
+            int w = r.nextInt(Math.max(1, node.length / PackedWide.NODE));
+            int slot = r.nextInt(24);
+            float plane = node.length == 0 ? (float) mid.x : node[PackedWide.NODE * w + slot];
+            if (Float.isInfinite(plane)) {
+                plane = (float) t.a.x;
+            }
+            int axis = node.length == 0 ? 0 : slot / 8;
+            double b = plane;
+            double q = switch (n % 6) {
+                case 0 -> b;
+                case 1 -> Math.nextUp(b);
+                case 2 -> Math.nextDown(b);
+                case 3 -> b + Math.ulp(plane) / 2;
+                case 4 -> b - Math.ulp(plane) / 2;
+                default -> r.nextBoolean() ? Math.nextUp(plane) : Math.nextDown(plane);
+            };
+            double[] p = {inside.x + r.nextDouble(-1, 1), inside.y + r.nextDouble(-1, 1), inside.z + r.nextDouble(-1, 1)};
+            p[axis] = q;
+            Vec3 o = new Vec3(p[0], p[1], p[2]);
+            Vec3 d = inside.minus(o);
+            double[] dd = {d.x, d.y, d.z};
+            switch (n / 6 % 3) {
+                case 0 -> { // toward a point on a triangle
+                }
+                case 1 -> dd[axis] = Math.copySign(0x1p-30, r.nextBoolean() ? 1 : -1) * Math.max(1, Math.abs(dd[(axis + 1) % 3]));
+                default -> {
+                    for (int a = 0; a < 3; a++) {
+                        dd[a] = -dd[a];
+                    }
+                }
+            }
+            double tMin = tMins[n % 3];
+            Ray ray = new Ray(o, new Vec3(dd[0], dd[1], dd[2]), tMin, n % 4 == 0 ? 1.0 : Double.POSITIVE_INFINITY);
+            if (engine.takesWide(ray)) {
+                wide++;
+            }
+            String ctx = "seed " + seed + " #" + n + " (plane " + plane + " axis " + axis + ") " + ray;
+            hits += MeshEngineTest.agree(mesh, tris, ray, ctx, ties);
+            for (boolean any : new boolean[] {false, true}) {
+                raylab.ray.IntersectionRecord a = new raylab.ray.IntersectionRecord();
+                raylab.ray.IntersectionRecord c = new raylab.ray.IntersectionRecord();
+                boolean ha = engine.intersectWideWherePossible(a, ray, any);
+                boolean hc = engine.intersectDouble(c, ray, any);
+                assertEquals(hc, ha, ctx + (any ? " any hit" : " closest") + ": hit? double " + c + ", 4-wide " + a);
+                if (hc && !any) {
+                    assertEquals(Double.doubleToRawLongBits(c.t), Double.doubleToRawLongBits(a.t), ctx + ": t");
+                    assertEquals(c.primitive, a.primitive, ctx + ": triangle");
+                    assertEquals(c.point, a.point, ctx + ": point");
+                    assertEquals(c.normal, a.normal, ctx + ": normal");
+                }
+            }
+        }
+        System.out.printf("seed %d origins by box planes: %d hits, %d ties, %d of 3000 through the 4-wide traversal%n",
+                seed, hits, ties[0], wide);
+        assertTrue(hits > 300, "seed " + seed + ": too few hits to mean anything: " + hits);
+        assertTrue(wide > 1500, "seed " + seed + ": too few rays through the 4-wide traversal: " + wide);
+    }
+
+    /**
+     * Shadow rays that start on the mesh: at a vertex, on a shared edge (its midpoint, rounded), or on
+     * a triangle, so that the triangles around the origin meet the ray at t = 0 or at a t of rounding
+     * size that straddles tMin; tMin from the smallest double to 10⁻⁴, toward random lights, near and
+     * far. Tree against loop, closest and any hit.
+     */
+    @ParameterizedTest(name = "seed {0}")
+    @ValueSource(longs = {21, 22, 23, 24, 25, 26})
+    void shadowRaysFromPointsOnTheMeshAgreeWithALinearLoop(long seed) {
+        List<Triangle> tris = MeshEngineTest.randomMesh(seed);
+        Mesh mesh = new Mesh(tris, "mesh");
+        SplittableRandom r = new SplittableRandom(seed * 977 + 1);
+        BoundingBox box = mesh.boundingBox();
+        Vec3 mid = box.min.plus(box.max).times(0.5);
+        double size = box.max.minus(box.min).length();
+        double[] tMins = {Double.MIN_VALUE, 1e-300, 1e-12, 1e-4};
+        int hits = 0;
+        int[] ties = {0};
+        for (int n = 0; n < 2500; n++) {
+            Triangle t = tris.get(r.nextInt(tris.size()));
+            Vec3 o = switch (n % 3) {
+                case 0 -> r.nextBoolean() ? t.a : t.b;
+                case 1 -> t.a.plus(t.b).times(0.5);
+                default -> t.a.plus(t.b.minus(t.a).times(r.nextDouble(0, 0.5))).plus(t.c.minus(t.a).times(r.nextDouble(0, 0.5)));
+            };
+            Vec3 light = mid.plus(MeshEngineTest.rnd(r, -1, 1).normalize().times(size * (n % 2 == 0 ? 0.7 : 40)));
+            Ray ray = new Ray(o, light.minus(o), tMins[n % 4], Math.nextDown(1.0));
+            hits += MeshEngineTest.agree(mesh, tris, ray, "seed " + seed + " #" + n + " " + ray, ties);
+        }
+        System.out.printf("seed %d shadow rays from the mesh: %d blocked, %d ties%n", seed, hits, ties[0]);
+        assertTrue(hits > 100, "seed " + seed + ": too few blocked rays to mean anything: " + hits);
     }
 
     @Test
