@@ -507,13 +507,20 @@ public final class StudentProcess implements AutoCloseable {
                 for (int j = 0; j < c.args.length; j++) {
                     if (c.args[j] instanceof IntersectionRecord r) {
                         byte tag = in.readByte();
-                        // A record left as it was sent is that record (its fields are not changed).
+                        // A record left as it was sent is that record (never changed), its
+                        // material the surface's as for a record read back.
                         c.after[j] = r;
                         if (tag == Wire.RECORD) {
                             c.after[j] = Wire.copyRecord(r);
                             Wire.readRecordInto(in, c.after[j], refs);
                         } else if (tag != Wire.AS_BEFORE) {
                             throw new Wire.ProtocolException("bad record tag " + tag);
+                        } else {
+                            Material m = r.surface == null ? null : r.surface.material();
+                            if (r.material != m) {
+                                c.after[j] = Wire.copyRecord(r);
+                                c.after[j].material = m;
+                            }
                         }
                     }
                 }
