@@ -5,7 +5,8 @@
 # timer switched to process CPU time (one tracing thread), makes its meshes, packages
 # target/raylab.jar if missing, then per round and level runs: Embree, raylab with the 4-wide
 # traversal (the default; $RAYLAB_MODES overrides), raylab with -Draylab.mesh.traversal=double. Every line is
-# one JSON object; raylab's cpu_* fields are rays per second of the tracing thread's CPU time.
+# one JSON object; raylab's cpu_* fields are rays per second of the tracing thread's CPU time;
+# steal_jiffies: CPU time the hypervisor gave to other guests during that engine's run (noise).
 # RAYLAB_JARS="a.jar b.jar" runs each jar in turn (old and new builds side by side) instead of target/raylab.jar.
 set -eu
 root=$(cd "$(dirname "$0")/../../.." && pwd)
@@ -23,17 +24,19 @@ sed -e 's/auto a = std::chrono::steady_clock::now(); run(false);/double a = cpu_
 grep -q 'double a = cpu_now()' "$cpu_src" || { echo "could not switch the harness to CPU time" >&2; exit 1; }
 [ -x "$out/embree_bench_cpu" ] && [ "$out/embree_bench_cpu" -nt "$cpu_src.body" ] || g++ -O3 -march=native -std=c++17 "$cpu_src" -lembree3 -lpthread -o "$out/embree_bench_cpu"
 [ -f "$root/target/raylab.jar" ] || (cd "$root" && ./mvnw -o -q -DskipTests package)
+steal() { awk '/^cpu /{print $9}' /proc/stat; }   # jiffies the hypervisor gave to other guests, all CPUs
 echo "{\"machine\":\"$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)\",\"java\":\"$(java -version 2>&1 | head -1 | tr -d '"')\",\"date\":\"$(date -u +%FT%TZ)\",\"load\":\"$(cut -d' ' -f1-3 /proc/loadavg)\"}"
 for r in $(seq 1 "${2:-3}"); do
   for L in ${1:-6}; do
     [ -f "$out/ico$L.obj" ] || python3 "$harness/meshgen.py" "$L" "$out/ico$L.obj"
-    echo "{\"round\":$r,\"level\":$L,\"engine\":\"embree\",\"load\":\"$(cut -d' ' -f1 /proc/loadavg)\",\"result\":$("$out/embree_bench_cpu" "$out/ico$L.obj" 1024 768 1 3)}"
+    s0=$(steal); res=$("$out/embree_bench_cpu" "$out/ico$L.obj" 1024 768 1 3)
+    echo "{\"round\":$r,\"level\":$L,\"engine\":\"embree\",\"load\":\"$(cut -d' ' -f1 /proc/loadavg)\",\"steal_jiffies\":$(( $(steal) - s0 )),\"result\":$res}"
     for jar in ${RAYLAB_JARS:-$root/target/raylab.jar}; do
       tag=""
       [ -z "${RAYLAB_JARS:-}" ] || tag="-$(basename "$jar" .jar)"
       for mode in ${RAYLAB_MODES:-wide double}; do
-        res=$(java -Draylab.mesh.traversal=$mode -jar "$jar" bench --obj "$out/ico$L.obj" --threads 1 --warmup 2 --runs 3 | tail -1)
-        echo "{\"round\":$r,\"level\":$L,\"engine\":\"raylab$tag-$mode\",\"load\":\"$(cut -d' ' -f1 /proc/loadavg)\",\"result\":$res}"
+        s0=$(steal); res=$(java -Draylab.mesh.traversal=$mode -jar "$jar" bench --obj "$out/ico$L.obj" --threads 1 --warmup 2 --runs 3 | tail -1)
+        echo "{\"round\":$r,\"level\":$L,\"engine\":\"raylab$tag-$mode\",\"load\":\"$(cut -d' ' -f1 /proc/loadavg)\",\"steal_jiffies\":$(( $(steal) - s0 )),\"result\":$res}"
       done
     done
   done

@@ -157,8 +157,11 @@ public final class BenchCommand implements Callable<Integer> {
                 counts(), warmup, runs, threadCounts.size() > 1 ? ", thread counts in turns pass by pass" : "");
         out.flush();
         int k = threadCounts.size();
+        // Warm-up passes as the timed ones (primary, then with shadows): a JIT that saw only one
+        // kind compiles the other's branch as a trap, and the first timed pass of it deoptimizes.
         for (int r = 0; r < warmup; r++) {
             for (int t : threadCounts) {
+                bench.run(t, false);
                 bench.run(t, true);
             }
         }
