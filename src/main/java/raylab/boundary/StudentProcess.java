@@ -30,6 +30,7 @@ import raylab.math.Color;
 import raylab.math.Vec3;
 import raylab.ray.IntersectionRecord;
 import raylab.ray.Ray;
+import raylab.remote.StudentServer;
 import raylab.remote.Wire;
 import raylab.shading.ShadingPoint;
 import raylab.surface.Surface;
@@ -490,7 +491,7 @@ public final class StudentProcess implements AutoCloseable {
             byte status = in.readByte();
             if (status == 2) {
                 int k = in.readInt();
-                if (!defer || c.live || k < 1 || k > 16) {
+                if (!defer || c.live || k < 1 || k > StudentServer.MAX_DEFERRED) {
                     throw new Wire.ProtocolException("questions sent back where none may be");
                 }
                 List<byte[]> questions = new ArrayList<>(k);

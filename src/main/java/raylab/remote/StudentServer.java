@@ -72,7 +72,7 @@ public final class StudentServer {
      */
     private List<byte[]> deferred;
     /** At most this many questions of one call are sent back; the grader asks again for more. */
-    static final int MAX_DEFERRED = 16;
+    public static final int MAX_DEFERRED = 16;
 
     StudentServer(InputStream in, OutputStream out, Set<String> studentClasses) {
         this.in = new DataInputStream(new BufferedInputStream(in, 1 << 16));
@@ -384,7 +384,7 @@ public final class StudentServer {
                     of.putIfAbsent(new Wire.Key(in.readBytes()), j);
                     given.add(in.readBytes());
                 }
-                    answerOf = of;
+                answerOf = of;
                 answers = given;
             }
             predicted = k;
