@@ -7,7 +7,12 @@
 # traversal (the default; $RAYLAB_MODES overrides), raylab with -Draylab.mesh.traversal=double. Every line is
 # one JSON object; raylab's cpu_* fields are rays per second of the tracing thread's CPU time;
 # steal_jiffies: CPU time the hypervisor gave to other guests during that engine's run (noise).
-# RAYLAB_JARS="a.jar b.jar" runs each jar in turn (old and new builds side by side) instead of target/raylab.jar.
+# RAYLAB_JARS="a.jar b.jar" runs each jar in turn (old and new builds side by side) instead of target/raylab.jar;
+# RAYLAB_JAVAS="java /path/to/jdk25/bin/java" runs each JVM in turn (default: java on the PATH).
+# Last, one summary line per level and raylab engine: the median over the rounds of raylab's best
+# pass over Embree's best pass (the same statistic on both sides: best of 3 timed passes), with the
+# spread; the same for raylab's median pass, and for the passes with shadow rays (rays per second of
+# primary plus shadow rays, best over best). The rounds are also kept in /tmp/raylab-bench/last-run.jsonl.
 set -eu
 root=$(cd "$(dirname "$0")/../../.." && pwd)
 harness=${EMBREE_BENCH_DIR:-$root/../shared/bench/embree}
@@ -25,6 +30,7 @@ grep -q 'double a = cpu_now()' "$cpu_src" || { echo "could not switch the harnes
 [ -x "$out/embree_bench_cpu" ] && [ "$out/embree_bench_cpu" -nt "$cpu_src.body" ] || g++ -O3 -march=native -std=c++17 "$cpu_src" -lembree3 -lpthread -o "$out/embree_bench_cpu"
 [ -f "$root/target/raylab.jar" ] || (cd "$root" && ./mvnw -o -q -DskipTests package)
 steal() { awk '/^cpu /{print $9}' /proc/stat; }   # jiffies the hypervisor gave to other guests, all CPUs
+{
 echo "{\"machine\":\"$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)\",\"java\":\"$(java -version 2>&1 | head -1 | tr -d '"')\",\"date\":\"$(date -u +%FT%TZ)\",\"load\":\"$(cut -d' ' -f1-3 /proc/loadavg)\"}"
 for r in $(seq 1 "${2:-3}"); do
   for L in ${1:-6}; do
@@ -32,12 +38,34 @@ for r in $(seq 1 "${2:-3}"); do
     s0=$(steal); res=$("$out/embree_bench_cpu" "$out/ico$L.obj" 1024 768 1 3)
     echo "{\"round\":$r,\"level\":$L,\"engine\":\"embree\",\"load\":\"$(cut -d' ' -f1 /proc/loadavg)\",\"steal_jiffies\":$(( $(steal) - s0 )),\"result\":$res}"
     for jar in ${RAYLAB_JARS:-$root/target/raylab.jar}; do
-      tag=""
-      [ -z "${RAYLAB_JARS:-}" ] || tag="-$(basename "$jar" .jar)"
-      for mode in ${RAYLAB_MODES:-wide double}; do
-        s0=$(steal); res=$(java -Draylab.mesh.traversal=$mode -jar "$jar" bench --obj "$out/ico$L.obj" --threads 1 --warmup 2 --runs 3 | tail -1)
-        echo "{\"round\":$r,\"level\":$L,\"engine\":\"raylab$tag-$mode\",\"load\":\"$(cut -d' ' -f1 /proc/loadavg)\",\"steal_jiffies\":$(( $(steal) - s0 )),\"result\":$res}"
+      for jvm in ${RAYLAB_JAVAS:-java}; do
+        tag=""
+        [ -z "${RAYLAB_JARS:-}" ] || tag="-$(basename "$jar" .jar)"
+        [ -z "${RAYLAB_JAVAS:-}" ] || tag="$tag-$("$jvm" -version 2>&1 | head -1 | sed 's/.*version "\([0-9]*\).*/jdk\1/')"
+        for mode in ${RAYLAB_MODES:-wide double}; do
+          s0=$(steal); res=$("$jvm" -Draylab.mesh.traversal=$mode -jar "$jar" bench --obj "$out/ico$L.obj" --threads 1 --warmup 2 --runs 3 | tail -1)
+          echo "{\"round\":$r,\"level\":$L,\"engine\":\"raylab$tag-$mode\",\"load\":\"$(cut -d' ' -f1 /proc/loadavg)\",\"steal_jiffies\":$(( $(steal) - s0 )),\"result\":$res}"
+        done
       done
     done
   done
 done
+} | tee "$out/last-run.jsonl"
+python3 - "$out/last-run.jsonl" <<'PY'
+import json, statistics, sys
+rows = [json.loads(line) for line in open(sys.argv[1]) if line.startswith('{"round"')]
+embree = {(o["round"], o["level"]): o["result"]["primary_mrays_s"] for o in rows if o["engine"] == "embree"}
+embree_shadow = {(o["round"], o["level"]): o["result"]["primary_plus_shadow_mrays_s"] for o in rows
+                 if o["engine"] == "embree"}
+spread = lambda xs: {"median": round(statistics.median(xs), 3), "min": round(min(xs), 3), "max": round(max(xs), 3)}
+engines = sorted({(o["level"], o["engine"]) for o in rows if o["engine"] != "embree"})
+for level, engine in engines:
+    mine = [o for o in rows if o["level"] == level and o["engine"] == engine and (o["round"], level) in embree]
+    best = [o["result"]["cpu_primary_max"] / embree[(o["round"], level)] for o in mine]
+    med = [o["result"]["cpu_primary_median"] / embree[(o["round"], level)] for o in mine]
+    shadow = [o["result"]["cpu_shadow_max"] / embree_shadow[(o["round"], level)] for o in mine]
+    print(json.dumps({"summary": "raylab over Embree, per round", "level": level,
+                      "engine": engine, "rounds": len(mine),
+                      "best_over_best": spread(best), "median_over_best": spread(med),
+                      "with_shadows_best_over_best": spread(shadow)}))
+PY
