@@ -13,7 +13,7 @@
 # pass over Embree's best pass (the same statistic on both sides: best of 3 timed passes), with the
 # spread; the same for raylab's median pass, and for the passes with shadow rays (rays per second of
 # primary plus shadow rays, best over best). The rounds are also kept in /tmp/raylab-bench/last-run.jsonl.
-set -eu
+set -euo pipefail
 root=$(cd "$(dirname "$0")/../../.." && pwd)
 harness=${EMBREE_BENCH_DIR:-$root/../shared/bench/embree}
 out=/tmp/raylab-bench
