@@ -310,10 +310,13 @@ class GraderAttackTest {
                 }
             }
             ByteArrayOutputStream err = new ByteArrayOutputStream();
+            // The attacked milestones' renders wait for their time-out (the sphere prints every ray it
+            // sees): 30 s, as the other gradings in the tests, instead of the default 60; the reference
+            // milestones' renders take a few seconds.
             int status = Main.run(new PrintWriter(new ByteArrayOutputStream(), true),
                     new PrintWriter(err, true, StandardCharsets.UTF_8), "grade", sub.toString(), "--out", out.toString(),
                     "--root", root.toString(), "--quiet", "--test-timeout", "10", "--milestone-timeout", "120",
-                    "--heap", "256", "--sandbox", mode, "--sandbox-user", user, "--cache", cache.toString());
+                    "--scene-timeout", "30", "--heap", "256", "--sandbox", mode, "--sandbox-user", user, "--cache", cache.toString());
             assertEquals(0, status, () -> "graded: " + err);
             Thread.sleep(4_500); // past the detached forger's 4 s
             JsonNode r = JSON.readTree(out.resolve("results.json").toFile());
