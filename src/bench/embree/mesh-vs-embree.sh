@@ -4,7 +4,8 @@
 # Builds the shared harness (../shared/bench/embree, or $EMBREE_BENCH_DIR) once with its
 # timer switched to process CPU time (one tracing thread), makes its meshes, packages
 # target/raylab.jar if missing, then per round and level runs: Embree, raylab with the 4-wide
-# traversal (the default; $RAYLAB_MODES overrides), raylab with -Draylab.mesh.traversal=double. Every line is
+# traversal (the default; $RAYLAB_MODES overrides, e.g. "wide vector" for the optional Vector API traversal,
+# run with --add-modules jdk.incubator.vector), raylab with -Draylab.mesh.traversal=double. Every line is
 # one JSON object; raylab's cpu_* fields are rays per second of the tracing thread's CPU time;
 # steal_jiffies: CPU time the hypervisor gave to other guests during that engine's run (noise).
 # RAYLAB_JARS="a.jar b.jar" runs each jar in turn (old and new builds side by side) instead of target/raylab.jar;
@@ -43,7 +44,8 @@ for r in $(seq 1 "${2:-3}"); do
         [ -z "${RAYLAB_JARS:-}" ] || tag="-$(basename "$jar" .jar)"
         [ -z "${RAYLAB_JAVAS:-}" ] || tag="$tag-$("$jvm" -version 2>&1 | head -1 | sed 's/.*version "\([0-9]*\).*/jdk\1/')"
         for mode in ${RAYLAB_MODES:-wide double}; do
-          s0=$(steal); res=$("$jvm" -Draylab.mesh.traversal=$mode -jar "$jar" bench --obj "$out/ico$L.obj" --threads 1 --warmup 2 --runs 3 | tail -1)
+          mods=""; [ "$mode" != vector ] || mods="--add-modules jdk.incubator.vector"   # prints the JVM's incubator warning
+          s0=$(steal); res=$("$jvm" $mods -Draylab.mesh.traversal=$mode -jar "$jar" bench --obj "$out/ico$L.obj" --threads 1 --warmup 2 --runs 3 | tail -1)
           echo "{\"round\":$r,\"level\":$L,\"engine\":\"raylab$tag-$mode\",\"load\":\"$(cut -d' ' -f1 /proc/loadavg)\",\"steal_jiffies\":$(( $(steal) - s0 )),\"result\":$res}"
         done
       done

@@ -150,8 +150,8 @@ public final class BenchCommand implements Callable<Integer> {
         read = null;
         MeshBench bench = new MeshBench(mesh, w, h);
         out.println("machine: " + MachineInfo.current().oneLine());
-        out.printf("mesh: %s, %,d triangles, %,d BVH nodes, %s kernel; parse %.0f ms, build %.0f ms%n", obj,
-                mesh.primitiveCount(), mesh.nodeCount(), mesh.usesPackedKernel() ? "packed" : "Triangle.intersect",
+        out.printf("mesh: %s, %,d triangles, %,d BVH nodes, %s; parse %.0f ms, build %.0f ms%n", obj,
+                mesh.primitiveCount(), mesh.nodeCount(), mesh.kernel(),
                 (t1 - t0) / 1e6, (t2 - t1) / 1e6);
         out.printf("rays: %dx%d pixel centres (harness camera), threads %s, %d warm-up + %d timed passes each%s%n", w, h,
                 counts(), warmup, runs, threadCounts.size() > 1 ? ", thread counts in turns pass by pass" : "");

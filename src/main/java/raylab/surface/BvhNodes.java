@@ -52,6 +52,8 @@ final class BvhNodes {
         long[] pending = new long[256];
         /** The ray of the packed engine's 4-wide traversal, for its leaf test (instructor-only). */
         final double[] ray = new double[16];
+        /** Four entry distances of the packed engine's Vector API traversal (instructor-only). */
+        final int[] lanes = new int[4];
         int top;
     }
 

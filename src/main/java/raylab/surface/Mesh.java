@@ -43,6 +43,9 @@ public final class Mesh extends Surface {
 
         /** Bytes of the engine's own arrays (beyond the mesh's vertices and tree). */
         long bytes();
+
+        /** Which traversal the engine takes, in a few words (for the bench's report). */
+        String traversal();
     }
 
     /** Name of the instructor-only packed engine (not in the starter). */
@@ -217,6 +220,11 @@ public final class Mesh extends Surface {
     /** Whether rays are tested by the packed engine (else by the Triangle objects). */
     public boolean usesPackedKernel() {
         return engine != null;
+    }
+
+    /** The kernel and traversal that test rays, in a few words (for the bench's report). */
+    public String kernel() {
+        return engine == null ? "Triangle.intersect kernel" : "packed kernel, " + engine.traversal();
     }
 
     @Override

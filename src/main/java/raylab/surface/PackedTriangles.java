@@ -34,6 +34,11 @@ final class PackedTriangles implements Mesh.Engine {
      * double traversal always (-Draylab.mesh.traversal=double).
      */
     static final boolean WIDE_TRAVERSAL = !"double".equals(System.getProperty("raylab.mesh.traversal"));
+    /**
+     * The Vector API traversal when asked for (-Draylab.mesh.traversal=vector) and to be had, else
+     * null: the scalar {@link PackedOctants}.
+     */
+    static final VectorTraversal VECTOR = VectorTraversal.fromProperty();
     /** The 4-wide tree of the octant traversal. */
     private final PackedWide wide;
 
@@ -67,12 +72,20 @@ final class PackedTriangles implements Mesh.Engine {
     }
 
     @Override
+    public String traversal() {
+        if (!WIDE_TRAVERSAL) {
+            return "double traversal";
+        }
+        return (VECTOR == null ? "4-wide scalar" : "4-wide Vector API") + " traversal where the float bounds hold";
+    }
+
+    @Override
     public boolean intersect(IntersectionRecord rec, Ray ray, boolean anyHit) {
         if (n == 0) {
             return false;
         }
         if (WIDE_TRAVERSAL && wide.inRange && inFloatRange(ray)) {
-            return intersectWide(rec, ray, anyHit);
+            return intersectWide(rec, ray, anyHit, VECTOR);
         }
         return intersectDouble(rec, ray, anyHit);
     }
@@ -97,14 +110,25 @@ final class PackedTriangles implements Mesh.Engine {
         if (n == 0) {
             return false;
         }
-        return wide.inRange && inFloatRange(ray) ? intersectWide(rec, ray, anyHit) : intersectDouble(rec, ray, anyHit);
+        return wide.inRange && inFloatRange(ray) ? intersectWide(rec, ray, anyHit, VECTOR) : intersectDouble(rec, ray, anyHit);
+    }
+
+    /**
+     * The 4-wide traversal with {@code vector} (null: the scalar one) where its bounds hold, else the
+     * double one (for tests).
+     */
+    boolean intersectWideWith(VectorTraversal vector, IntersectionRecord rec, Ray ray, boolean anyHit) {
+        if (n == 0) {
+            return false;
+        }
+        return wide.inRange && inFloatRange(ray) ? intersectWide(rec, ray, anyHit, vector) : intersectDouble(rec, ray, anyHit);
     }
 
     /**
      * Closest (or any) hit with the 4-wide float traversal ({@link PackedOctants}, one copy per ray
-     * octant), for rays within the float bounds ({@link #inFloatRange}).
+     * octant), or with {@code vector} when not null, for rays within the float bounds ({@link #inFloatRange}).
      */
-    private boolean intersectWide(IntersectionRecord rec, Ray ray, boolean anyHit) {
+    private boolean intersectWide(IntersectionRecord rec, Ray ray, boolean anyHit, VectorTraversal vector) {
         final double px = ray.p.x, py = ray.p.y, pz = ray.p.z;
         final double dx = ray.d.x, dy = ray.d.y, dz = ray.d.z;
         final boolean gx = dx < 0, gy = dy < 0, gz = dz < 0;
@@ -148,8 +172,11 @@ final class PackedTriangles implements Mesh.Engine {
         r[PackedWide.PKY] = pky;
         r[PackedWide.PKZ] = pkz;
         r[PackedWide.TESTS] = 0;
-        int slot = PackedOctants.trace(octant, wide, tree.leaf, tri, frames.pending, r, kz, onx, ony, onz, ofx,
-                ofy, ofz, mx, my, mz, anyHit);
+        int slot = vector == null
+                ? PackedOctants.trace(octant, wide, tree.leaf, tri, frames.pending, r, kz, onx, ony, onz, ofx, ofy,
+                        ofz, mx, my, mz, anyHit)
+                : vector.trace(octant, wide, tree.leaf, tri, frames.pending, r, kz, onx, ony, onz, ofx, ofy, ofz,
+                        mx, my, mz, anyHit, frames.lanes);
         return finish(rec, anyHit, r[PackedWide.BEST], slot, (int) r[PackedWide.TESTS], kx, ky, kz, shx, shy, shz, pkx,
                 pky, pkz);
     }

@@ -8,14 +8,18 @@ import java.nio.file.Path;
 /**
  * Writes {@code src/main/java/raylab/surface/PackedOctants.java}: the packed engine's 4-wide float
  * traversal, one copy per ray octant, so that the near and far plane offsets and the signs of the
- * slab distances are constants in each copy (docs/mesh-engine.md, "The 4-wide traversal").
- * {@code OctantTraversalSourceTest} checks that the committed file is what this makes.
+ * slab distances are constants in each copy (docs/mesh-engine.md, "The 4-wide traversal"); and
+ * {@code PackedVector.java}, the same traversal with a node's four boxes as vector lanes, whose
+ * leaves and pops are the same text. {@code OctantTraversalSourceTest} checks that the committed
+ * files are what this makes.
  *
  * <p>Regenerate with {@code java src/test/java/raylab/surface/OctantTraversalSource.java} from the
  * project root.
  */
 public final class OctantTraversalSource {
     static final Path FILE = Path.of("src/main/java/raylab/surface/PackedOctants.java");
+    /** The Vector API traversal, written from the same leaf and pop code. */
+    static final Path VECTOR_FILE = Path.of("src/main/java/raylab/surface/PackedVector.java");
 
     private OctantTraversalSource() {
     }
@@ -23,6 +27,8 @@ public final class OctantTraversalSource {
     public static void main(String[] args) throws IOException {
         Files.writeString(FILE, source(), StandardCharsets.UTF_8);
         System.out.println("wrote " + FILE);
+        Files.writeString(VECTOR_FILE, vectorSource(), StandardCharsets.UTF_8);
+        System.out.println("wrote " + VECTOR_FILE);
     }
 
     static String source() {
@@ -66,23 +72,7 @@ public final class OctantTraversalSource {
                             float mx, float my, float mz, boolean anyHit) {
                         switch (octant) {
                 """);
-        for (int o = 0; o < 8; o++) {
-            s.append("            case ").append(o).append(":\n");
-            s.append("                return trace").append(o)
-                    .append("(wide.node, wide.root, leaf, tri, stack, ray, kz, onx, ony, onz, ofx, ofy, ofz,\n");
-            s.append("                        mx, my, mz, anyHit);\n");
-        }
-        s.append("""
-                            default:
-                                throw new IllegalArgumentException("octant " + octant);
-                        }
-                    }
-                """);
-        for (int o = 0; o < 8; o++) {
-            s.append(octant(o));
-        }
-        s.append("}\n");
-        return s.toString();
+        return dispatchAndOctants(s, "", OctantTraversalSource::octant);
     }
 
     /** One octant's traversal: box tests, leaf tests and pops in one loop. */
@@ -112,6 +102,22 @@ public final class OctantTraversalSource {
                                     ref = next;
                                     continue;
                                 }
+                """;
+        StringBuilder slots = new StringBuilder();
+        // Push the hit children farthest first (visit position 3 down to 0), so the nearest is on top.
+        for (int j = 3; j >= 0; j--) {
+            slots.append(slot(j, nx, ny, nz));
+        }
+        return String.format(body, o, nx ? "<" : ">", ny ? "<" : ">", nz ? "<" : ">", 28 + (o >> 2),
+                (o & 3) == 0 ? "" : " >>> " + 8 * (o & 3), slots) + leafAndPop();
+    }
+
+    /**
+     * The rest of a traversal's loop, the same in every octant and in {@code PackedVector}: a leaf's
+     * triangles with the double watertight test, then the pop of the next pending child.
+     */
+    static String leafAndPop() {
+        return String.format("""
                             } else {
                                 // A leaf: its triangles with the double watertight test, as Triangle.intersect.
                                 int l = ~ref;
@@ -125,9 +131,9 @@ public final class OctantTraversalSource {
                                 int end = first + leaf[2 * l + 1];
                                 int s = first;
                                 if (kz == 2) {
-                %8$s                } else if (kz == 1) {
-                %9$s                } else {
-                %10$s                }
+                %s                } else if (kz == 1) {
+                %s                } else {
+                %s                }
                                 ray[PackedWide.TESTS] += s - first;
                                 if (found >= 0) {
                                     ray[PackedWide.BEST] = best;
@@ -151,15 +157,7 @@ public final class OctantTraversalSource {
                             }
                         }
                     }
-                """;
-        StringBuilder slots = new StringBuilder();
-        // Push the hit children farthest first (visit position 3 down to 0), so the nearest is on top.
-        for (int j = 3; j >= 0; j--) {
-            slots.append(slot(j, nx, ny, nz));
-        }
-        return String.format(body, o, nx ? "<" : ">", ny ? "<" : ">", nz ? "<" : ">", 28 + (o >> 2),
-                (o & 3) == 0 ? "" : " >>> " + 8 * (o & 3), slots, leafLoop(0, 1, 2), leafLoop(2, 0, 1),
-                leafLoop(1, 2, 0));
+                """, leafLoop(0, 1, 2), leafLoop(2, 0, 1), leafLoop(1, 2, 0));
     }
 
     /**
@@ -197,6 +195,146 @@ public final class OctantTraversalSource {
     static String plane(int offset, String side, String axis) {
         return "Float.floatToRawIntBits((o" + side + axis + " - node[b" + (offset == 0 ? "" : " + " + offset) + "]) * m"
                 + axis + ")";
+    }
+
+    /**
+     * {@code PackedVector}: as {@code PackedOctants}, one method per octant with the plane offsets
+     * as constants, but the four boxes of a node tested as the lanes of {@code FloatVector}s with
+     * the scalar traversal's operations lane by lane; then the entered children pushed in the
+     * octant's visit order, farthest first, as {@link #slot} does. Leaves and pops are the same text.
+     */
+    static String vectorSource() {
+        StringBuilder s = new StringBuilder();
+        s.append("""
+                package raylab.surface;
+
+                // GENERATED by src/test/java/raylab/surface/OctantTraversalSource.java: do not edit by hand,
+                // change the generator and run it (OctantTraversalSourceTest checks that this file is current).
+                // Compiled apart, with --add-modules jdk.incubator.vector (pom.xml, execution vector-traversal).
+
+                import jdk.incubator.vector.FloatVector;
+                import jdk.incubator.vector.IntVector;
+                import jdk.incubator.vector.VectorMask;
+                import jdk.incubator.vector.VectorOperators;
+                import jdk.incubator.vector.VectorSpecies;
+
+                /**
+                 * The packed engine's 4-wide traversal with a node's four child boxes as the lanes of 128-bit
+                 * vectors ({@link VectorTraversal}: optional, instructor-only). Per lane it computes what {@link
+                 * PackedOctants} computes per child, with the same float and int operations: the slab distances
+                 * (o' − b)·m, entry = max of the near ones, exit = min of the far ones and the closest hit, plus
+                 * {@link PackedWide#K}, compared as ints. The children entered are then pushed in the octant's
+                 * visit order, farthest first, and the nearest is entered at once; leaves and pops are {@code
+                 * PackedOctants}' text. So both traversals enter the same boxes in the same order and find the
+                 * same hit (VectorTraversalTest). One method per octant, as there: the plane offsets are
+                 * constants, which leaves the JIT more registers.
+                 */
+                final class PackedVector implements VectorTraversal {
+                    private static final VectorSpecies<Float> F = FloatVector.SPECIES_128;
+                    private static final VectorSpecies<Integer> I = IntVector.SPECIES_128;
+                    /** The entry of a child not entered: a NaN's bits, which no entered child has (docs/mesh-engine.md). */
+                    private static final IntVector NONE = IntVector.broadcast(I, Integer.MAX_VALUE);
+                    private static final IntVector WIDEN = IntVector.broadcast(I, PackedWide.K);
+
+                    PackedVector() {
+                    }
+
+                    @Override
+                    public int trace(int octant, PackedWide wide, int[] leaf, double[] tri, long[] stack, double[] ray,
+                            int kz, float onx, float ony, float onz, float ofx, float ofy, float ofz, float mx, float my,
+                            float mz, boolean anyHit, int[] lanes) {
+                        switch (octant) {
+                """);
+        return dispatchAndOctants(s, ", lanes", OctantTraversalSource::vectorOctant);
+    }
+
+    /** The switch from {@code trace} to {@code traceN} (arguments + {@code extra}), then the eight methods. */
+    static String dispatchAndOctants(StringBuilder s, String extra, java.util.function.IntFunction<String> octant) {
+        for (int o = 0; o < 8; o++) {
+            s.append("            case ").append(o).append(":\n");
+            s.append("                return trace").append(o)
+                    .append("(wide.node, wide.root, leaf, tri, stack, ray, kz, onx, ony, onz, ofx, ofy, ofz,\n");
+            s.append("                        mx, my, mz, anyHit").append(extra).append(");\n");
+        }
+        s.append("""
+                            default:
+                                throw new IllegalArgumentException("octant " + octant);
+                        }
+                    }
+                """);
+        for (int o = 0; o < 8; o++) {
+            s.append(octant.apply(o));
+        }
+        s.append("}\n");
+        return s.toString();
+    }
+
+    /** One octant's vector traversal: box tests, leaf tests and pops in one loop. */
+    static String vectorOctant(int o) {
+        boolean nx = (o & 1) != 0, ny = (o & 2) != 0, nz = (o & 4) != 0;
+        StringBuilder pushes = new StringBuilder();
+        for (int j = 3; j >= 0; j--) {
+            String sel = j == 0 ? "order & 3" : "order >>> " + 2 * j + " & 3";
+            pushes.append(String.format("""
+                                        {
+                                            int c = %s;
+                                            int e = lanes[c];
+                                            if (e != Integer.MAX_VALUE) {
+                                                int r = Float.floatToRawIntBits(node[k + 24 + c]);
+                                                stack[top++] = (long) e << 32 | (r & 0xffffffffL);
+                                                next = r;
+                                            }
+                                        }
+                    """, sel));
+        }
+        return String.format("""
+
+                    /** Octant %1$d: d.x %2$s 0, d.y %3$s 0, d.z %4$s 0. */
+                    private static int trace%1$d(float[] node, int root, int[] leaf, double[] tri, long[] stack,
+                            double[] ray, int kz, float onx, float ony, float onz, float ofx, float ofy, float ofz,
+                            float mx, float my, float mz, boolean anyHit, int[] lanes) {
+                        final FloatVector vonx = FloatVector.broadcast(F, onx), vony = FloatVector.broadcast(F, ony);
+                        final FloatVector vonz = FloatVector.broadcast(F, onz), vofx = FloatVector.broadcast(F, ofx);
+                        final FloatVector vofy = FloatVector.broadcast(F, ofy), vofz = FloatVector.broadcast(F, ofz);
+                        final FloatVector vmx = FloatVector.broadcast(F, mx), vmy = FloatVector.broadcast(F, my);
+                        final FloatVector vmz = FloatVector.broadcast(F, mz);
+                        int t1 = PackedWide.exitBits(Math.min(ray[PackedWide.BEST], ray[PackedWide.TMAX]));
+                        int top = 0;
+                        int ref = root;
+                        int bestSlot = -1;
+                        while (true) {
+                            if (ref >= 0) {
+                                int k = ref << 5;
+                                // Near and far planes: min of axis a at 8a, max at 8a + 4.
+                                IntVector nx = vonx.sub(FloatVector.fromArray(F, node, k%5$s)).mul(vmx).reinterpretAsInts();
+                                IntVector fx = vofx.sub(FloatVector.fromArray(F, node, k%6$s)).mul(vmx).reinterpretAsInts();
+                                IntVector ny = vony.sub(FloatVector.fromArray(F, node, k%7$s)).mul(vmy).reinterpretAsInts();
+                                IntVector fy = vofy.sub(FloatVector.fromArray(F, node, k%8$s)).mul(vmy).reinterpretAsInts();
+                                IntVector nz = vonz.sub(FloatVector.fromArray(F, node, k%9$s)).mul(vmz).reinterpretAsInts();
+                                IntVector fz = vofz.sub(FloatVector.fromArray(F, node, k%10$s)).mul(vmz).reinterpretAsInts();
+                                IntVector in = nx.max(ny).max(nz);
+                                IntVector out = fx.min(fy).min(fz).min(IntVector.broadcast(I, t1)).add(WIDEN);
+                                VectorMask<Integer> entered = in.compare(VectorOperators.LE, out);
+                                if (entered.anyTrue()) {
+                                    // Lane by lane through an array: VectorMask.toLong is not compiled to a
+                                    // few instructions on JDK 17.
+                                    NONE.blend(in, entered).intoArray(lanes, 0);
+                                    int order = Float.floatToRawIntBits(node[k + %11$d])%12$s;
+                                    // The child entered last (the nearest), or 0 for none: no child is the root, node 0.
+                                    int next = 0;
+                %13$s                    if (next != 0) {
+                                        top--;
+                                        ref = next;
+                                        continue;
+                                    }
+                                }
+                """, o, nx ? "<" : ">", ny ? "<" : ">", nz ? "<" : ">", offset(nx ? 4 : 0), offset(nx ? 0 : 4),
+                offset(ny ? 12 : 8), offset(ny ? 8 : 12), offset(nz ? 20 : 16), offset(nz ? 16 : 20), 28 + (o >> 2),
+                (o & 3) == 0 ? "" : " >>> " + 8 * (o & 3), pushes) + leafAndPop();
+    }
+
+    private static String offset(int a) {
+        return a == 0 ? "" : " + " + a;
     }
 
     /** A leaf's triangles for ray-space axes kx, ky, kz (constant vertex offsets). */
