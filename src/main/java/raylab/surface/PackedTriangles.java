@@ -107,10 +107,7 @@ final class PackedTriangles implements Mesh.Engine {
 
     /** The 4-wide traversal where its bounds hold, else the double one (for tests and benchmarks). */
     boolean intersectWideWherePossible(IntersectionRecord rec, Ray ray, boolean anyHit) {
-        if (n == 0) {
-            return false;
-        }
-        return wide.inRange && inFloatRange(ray) ? intersectWide(rec, ray, anyHit, VECTOR) : intersectDouble(rec, ray, anyHit);
+        return intersectWideWith(VECTOR, rec, ray, anyHit);
     }
 
     /**
