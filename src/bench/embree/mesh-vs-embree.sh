@@ -17,6 +17,11 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../../.." && pwd)
 harness=${EMBREE_BENCH_DIR:-$root/../shared/bench/embree}
+[ -f "$harness/embree_bench.cpp" ] || { echo "mesh-vs-embree.sh: the shared Embree harness is not at $harness; set EMBREE_BENCH_DIR to its folder" >&2; exit 2; }
+if ! dpkg -s libembree-dev >/dev/null 2>&1; then   # what the harness's run.sh installs
+  echo "mesh-vs-embree.sh: installing Debian's libembree-dev" >&2
+  { apt-get update -qq && apt-get install -y -qq libembree-dev; } >/dev/null 2>&1 || { echo "mesh-vs-embree.sh: could not install libembree-dev (Embree 3); install it, then run again" >&2; exit 2; }
+fi
 out=/tmp/raylab-bench
 mkdir -p "$out"
 cpu_src="$out/embree_bench_cpu.cpp"
