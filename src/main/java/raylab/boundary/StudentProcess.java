@@ -337,11 +337,10 @@ public final class StudentProcess implements AutoCloseable {
     /**
      * One call of a {@link #multi} frame: the method, its target and arguments (records as they
      * are before the call; not changed by it), the callbacks it is expected to ask with their
-     * answers; and after the call its result or exception, the record arguments as the student's
-     * code left them, and which of those answers it used.
+     * answers (the grader's own, never a prediction); and after the call its result or exception
+     * and the record arguments as the student's code left them.
      */
     public static final class MultiCall {
-        private static final int[] NONE = new int[0];
         final String cls;
         final String name;
         final Object target;
@@ -349,7 +348,6 @@ public final class StudentProcess implements AutoCloseable {
         final List<Answered> answers;
         Object result;
         RuntimeException thrown;
-        int[] used = NONE;
         /** After the call: each record argument as the student's code left it (null for other arguments). */
         IntersectionRecord[] after;
         /** The grader's answers to questions the call sent back: [question, answer] payloads; null: none. */
@@ -371,10 +369,6 @@ public final class StudentProcess implements AutoCloseable {
 
         public RuntimeException thrown() {
             return thrown;
-        }
-
-        public int[] used() {
-            return used;
         }
 
         public IntersectionRecord[] after() {
@@ -450,7 +444,9 @@ public final class StudentProcess implements AutoCloseable {
             }
             previous = c.args;
             int truths = c.truths == null ? 0 : c.truths.size();
-            buf.writeInt(c.answers.size());
+            // No answer given in advance is a prediction: every one is the grader's own, so none
+            // is to be reported as used (grader/README.md, "What crosses the boundary").
+            buf.writeInt(0);
             buf.writeInt(c.answers.size() + truths);
             for (Answered an : c.answers) {
                 q.reset();
@@ -530,16 +526,10 @@ public final class StudentProcess implements AutoCloseable {
             } else {
                 throw new Wire.ProtocolException("bad call status " + status);
             }
-            int u = in.readInt();
-            if (u < 0 || u > c.answers.size() * 4 + 16) {
-                throw new Wire.ProtocolException("bad count of answers used");
-            }
-            c.used = new int[u];
-            for (int i = 0; i < u; i++) {
-                c.used[i] = in.readInt();
-                if (c.used[i] < 0 || c.used[i] >= c.answers.size()) {
-                    throw new Wire.ProtocolException("used an answer that was not given");
-                }
+            // Answers are reported used only below the count of predicted ones, which is 0: a
+            // report is a broken or forged reply, and nothing the reply says about itself counts.
+            if (in.readInt() != 0) {
+                throw new Wire.ProtocolException("reported answers used where none were predicted");
             }
         }
         output(in.readString());

@@ -68,12 +68,15 @@ public final class TrustedRender {
             }
             return image;
         }
+        // The reference image's traces have a shader and a record of their own: the state the
+        // reference leaves in them (a shadow ray's scratch record) never reaches a sent call.
+        Shader referenceShader = new Shader(scene, r.root(), r.plan(), Mode.FULL);
         Remote.speculate(spec);
         try {
             for (int y0 = 0; y0 < scene.height; y0 += BAND_ROWS) {
                 checkTime();
                 set[0] += band(r, shader, rec, stats, image, y0, Math.min(scene.height, y0 + BAND_ROWS), name, spec,
-                        reference);
+                        reference, referenceShader);
             }
         } finally {
             Remote.speculate(null);
@@ -98,14 +101,16 @@ public final class TrustedRender {
     }
 
     /**
-     * Rows y0 to y1 in rounds: each open pixel traced with the answers known and predictions for
-     * the rest, then the predictions checked against the student's answers in one frame, until
-     * every pixel's trace rests on the student's answers only. Failures are thrown in the order
-     * of the pixels, as a render one call at a time would meet them. The first round's colours
-     * go to {@code reference} (if not null); returns how many pixels of it were set.
+     * Rows y0 to y1 in rounds: each open pixel traced with the answers known and neutral guesses
+     * for the rest (never the reference's answers: {@link Speculation}), then the guesses checked
+     * against the student's answers in one frame, until every pixel's trace rests on the
+     * student's answers only. Failures are thrown in the order of the pixels, as a render one
+     * call at a time would meet them. Before the rounds, every pixel is traced by the milestone's
+     * reference alone into {@code reference} (if not null), with {@code referenceShader}; returns
+     * how many pixels of it were set.
      */
     private static int band(Renderer r, Shader shader, IntersectionRecord rec, RenderStats stats, Image image,
-            int y0, int y1, String name, Speculation spec, Image reference) {
+            int y0, int y1, String name, Speculation spec, Image reference, Shader referenceShader) {
         int w = image.width;
         int n = w * (y1 - y0);
         Color[] colors = new Color[n];
@@ -115,6 +120,22 @@ public final class TrustedRender {
         Speculation.Pixel[] traces = new Speculation.Pixel[n];
         int open = n;
         int set = 0;
+        if (reference != null) {
+            // The reference image: every pixel traced once by the milestone's reference here,
+            // before any call of the band is sent; nothing of these traces leaves this JVM.
+            IntersectionRecord referenceRec = new IntersectionRecord();
+            for (int i = 0; i < n; i++) {
+                spec.beginReference();
+                try {
+                    reference.set(i % w, y0 + i / w, r.pixel(i % w, y0 + i / w, referenceShader, referenceRec, stats));
+                    set++;
+                } catch (Speculation.Unpredictable | RuntimeException | StackOverflowError e) {
+                    // Left out: the grader renders the reference itself.
+                } finally {
+                    spec.end();
+                }
+            }
+        }
         for (int round = 0; open > 0 && round < Speculation.MAX_ROUNDS; round++) {
             for (int i = 0; i < n; i++) {
                 if (done[i] || oneAtATime[i]) {
@@ -132,14 +153,6 @@ public final class TrustedRender {
                     failures[i] = e;
                 } finally {
                     spec.end();
-                }
-            }
-            if (round == 0 && reference != null) {
-                for (int i = 0; i < n; i++) {
-                    if (!oneAtATime[i] && failures[i] == null && colors[i] != null) {
-                        reference.set(i % w, y0 + i / w, colors[i]);
-                        set++;
-                    }
                 }
             }
             spec.send();

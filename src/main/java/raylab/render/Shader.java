@@ -193,6 +193,9 @@ public final class Shader {
             int i = indexOf(light);
             if (i >= 0 && plan.shadows[i]) {
                 stats.shadowRays++;
+                // A fresh scratch record for each shadow ray: nothing of an earlier ray (another
+                // pixel's, or through the process boundary a guess's) reaches the student's code.
+                scratch.reset();
                 boolean blocked = Shadows.isShadowed(root, at.x, at.n, light, scratch);
                 stats.intersectionTests += scratch.tests;
                 scratch.tests = 0;
