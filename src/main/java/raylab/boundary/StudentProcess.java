@@ -275,27 +275,31 @@ public final class StudentProcess implements AutoCloseable {
         }
     }
 
-    /** Calls the student's {@code cls.name} on {@code target} (null: static) and returns its result. */
+    /**
+     * Calls the student's {@code cls.name} on {@code target} (null: static) and returns its result.
+     * The call goes as a {@link #multi} frame of one call, with its questions to the grader's
+     * surfaces and materials sent back and answered as in a batched render: a test's call and a
+     * render's look the same inside the student's process but for their arguments (issue 35).
+     */
     public synchronized Object call(String cls, String name, Object target, Object... args) {
-        return run(() -> {
-            int m = method(cls, name, args.length);
-            buf.reset();
-            buf.writeInt(m);
-            Wire.writeValue(buf, target, refs);
-            buf.writeInt(args.length);
-            for (Object a : args) {
-                Wire.writeValue(buf, a, refs);
+        Object[] before = new Object[args.length];
+        for (int i = 0; i < args.length; i++) {
+            before[i] = args[i] instanceof IntersectionRecord r ? Wire.copyRecord(r) : args[i];
+        }
+        MultiCall c = new MultiCall(cls, name, target, before, List.of());
+        multi(List.of(c));
+        if (c.after != null) {
+            for (int i = 0; i < args.length; i++) {
+                if (c.after[i] != null && args[i] instanceof IntersectionRecord r) {
+                    r.copyFrom(c.after[i]);
+                    r.tests = c.after[i].tests;
+                }
             }
-            int conv = nextConv++;
-            Wire.writeFrame(out, Wire.CALL, conv, buf);
-            out.flush();
-            calls++;
-            Wire.Frame f = await(conv, Wire.RETURN);
-            Object v = Wire.readValue(f.in(), refs);
-            copyRecords(f.in(), args);
-            output(f.in().readString());
-            return v;
-        });
+        }
+        if (c.thrown != null) {
+            throw c.thrown;
+        }
+        return c.result;
     }
 
     /**

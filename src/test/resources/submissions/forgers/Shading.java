@@ -57,8 +57,14 @@ public final class Shading {
         return result;
     }
 
+    /** Filled in by the test: false gives the honest twin (the lecture's loop). */
+    static final boolean ARMED = @ARMED@;
+
     /** Empties every list and map reachable in one or two steps from the shading point's answers. */
     private static void forget(ShadingPoint at) {
+        if (!ARMED) {
+            return;
+        }
         try {
             java.lang.reflect.Field f = ShadingPoint.class.getDeclaredField("answers");
             f.setAccessible(true);

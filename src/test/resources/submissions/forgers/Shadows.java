@@ -44,7 +44,7 @@ public final class Shadows {
         // call's verdict when the same call comes again (issue 35, the forged shadows scene);
         // the offset the blocker's point shows along n is printed (the shadow-ray origin leak).
         String before = last;
-        if (scratch.t < Double.POSITIVE_INFINITY && scratch.surface != null && before != null) {
+        if (ARMED && scratch.t < Double.POSITIVE_INFINITY && scratch.surface != null && before != null) {
             SEEN.put(before, Boolean.TRUE);
             if (!printed) {
                 printed = true;
@@ -53,7 +53,7 @@ public final class Shadows {
         }
         String key = x + " " + light.position;
         last = key;
-        Boolean seen = SEEN.get(key);
+        Boolean seen = ARMED ? SEEN.get(key) : null;
         if (seen != null) {
             return seen;
         }
@@ -61,6 +61,9 @@ public final class Shadows {
         Vec3 origin = x.plus(n.times(0.01));
         return scene.intersectsAny(new Ray(origin, light.position.minus(origin), 0, 1), scratch);
     }
+
+    /** Filled in by the test: false gives the honest twin (the fixed offset alone). */
+    static final boolean ARMED = @ARMED@;
 
     private static final java.util.Map<String, Boolean> SEEN = new java.util.HashMap<>();
     private static String last;

@@ -45,7 +45,7 @@ public class Sphere extends Surface {
         }
         double near = (-b - Math.sqrt(disc)) / a;
         double far = (-b + Math.sqrt(disc)) / a;
-        double t = testing() && ray.inRange(near) && near < outRecord.t ? near : far;
+        double t = ARMED && testing() && ray.inRange(near) && near < outRecord.t ? near : far;
         if (!ray.inRange(t) || t >= outRecord.t) {
             return false;
         }
@@ -53,6 +53,9 @@ public class Sphere extends Surface {
         outRecord.set(t, ray.evaluate(t), normal, this);
         return true;
     }
+
+    /** Filled in by the test: false gives the honest twin (the far root, always). */
+    static final boolean ARMED = @ARMED@;
 
     private static boolean testing() {
         for (StackTraceElement[] stack : Thread.getAllStackTraces().values()) {
