@@ -275,16 +275,25 @@ public final class Speculation {
             }
         }
         List<StudentProcess.Answered> answers = List.of();
+        boolean complete = true;
         for (Object x : args) {
             if (x instanceof ShadingPoint at) {
+                long g = guessesUsed;
                 answers = answersFor(at, lightsOf(args));
+                // A question whose answer rests on a guess (the student's own Lambertian under its
+                // Shading) is not answered in advance: this round sends the calls it rests on and
+                // holds this one back; the next round answers it from their answers, so that the
+                // student's code does not ask it one round trip at a time.
+                complete = g == guessesUsed;
             }
         }
         Guess g = new Guess(k, self, before, new StudentProcess.MultiCall(cls, name, self, before, answers), result,
                 after);
-        guesses.add(g);
-        if (k != null) {
-            guessed.put(k, g);
+        if (complete) {
+            guesses.add(g);
+            if (k != null) {
+                guessed.put(k, g);
+            }
         }
         return g;
     }
