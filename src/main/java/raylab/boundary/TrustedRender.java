@@ -83,7 +83,7 @@ public final class TrustedRender {
 
 
     private static void checkTime() {
-        if (timed && System.nanoTime() - deadline > 0) {
+        if (timed && (budget < 0 || Remote.process().studentCpuNanos() - cpuAtStart > budget)) {
             throw new OutOfTime();
         }
     }
@@ -187,23 +187,33 @@ public final class TrustedRender {
         }
     }
 
-    /** The deadline of this JVM's renders ({@link System#nanoTime}), if {@link #timed}; checked between bands. */
-    private static long deadline;
+    /**
+     * The renders' time limit, if {@link #timed}: the student processes' CPU time from
+     * {@link #cpuAtStart} on (never the grader's, never time spent waiting for a CPU), checked
+     * between bands and before every frame sent within a band.
+     */
+    private static long budget;
+    private static long cpuAtStart;
     private static boolean timed;
 
     /**
      * Renders the scenes of {@code args} (triples SCENE.json OUT.png NAME) one after the other with
      * this JVM's student process, batched by the milestone's reference named in the system
      * property {@code raylab.boundary.references} if it is set. A scene that fails leaves
-     * {@code OUT.png.err} (its first line says why); once {@code deadlineNanos}
-     * ({@link System#nanoTime}) has passed, the scene being rendered and those after it leave
-     * {@code OUT.png.timeout} instead. A batched render also leaves the reference solution's
+     * {@code OUT.png.err} (its first line says why); once the student's code has used as much
+     * CPU time as there is from now to {@code deadlineNanos} ({@link System#nanoTime}: the
+     * renders' limit), the scene being rendered and those after it leave {@code OUT.png.timeout}
+     * instead. A batched render also leaves the reference solution's
      * image, {@code OUT.png.reference.png}, when its first rounds traced every pixel ({@link Long#MAX_VALUE}: no deadline). Timings go to {@code times} when RAYLAB_GRADE_TIMES is set.
      */
     public static void renderAll(java.util.List<String> args, long deadlineNanos, java.io.PrintStream times)
             throws java.io.IOException {
-        deadline = deadlineNanos;
         timed = deadlineNanos != Long.MAX_VALUE;
+        budget = deadlineNanos - System.nanoTime();
+        if (timed && budget >= 0) {
+            cpuAtStart = Remote.process().studentCpuNanos();
+            Remote.process().beforeEachFrame(TrustedRender::checkTime);
+        }
         for (int i = 0; i + 2 < args.size(); i += 3) {
             Path out = Path.of(args.get(i + 1));
             String err = null;
@@ -244,6 +254,8 @@ public final class TrustedRender {
                 continue;
             } catch (StudentException | StudentTimeout e) {
                 err = e.getMessage();
+            } catch (GradingFailure e) {
+                err = GradingFailure.PREFIX + e.getMessage();
             } catch (Throwable t) {
                 err = t.toString();
             }

@@ -872,13 +872,14 @@ public final class Grader {
                 if (!r.status().passed()) {
                     failedCount++;
                     if (passed) {
-                        message = explain(r, g.size() > 1 ? r.displayName() : null);
+                        message = r.gradingFailed() ? GradingStatus.message(r.message())
+                                : explain(r, g.size() > 1 ? r.displayName() : null);
                         output = r.output() == null ? "" : r.output();
                     }
                     passed = false;
                 }
             }
-            if (failedCount > 1 && g.size() > 1) {
+            if (failedCount > 1 && g.size() > 1 && !message.startsWith(GradingStatus.STUDENT_MESSAGE)) {
                 message = failedCount + " of " + g.size() + " cases failed; the first: " + message;
             }
             if (kind != Kind.VISIBLE) {
@@ -1070,8 +1071,9 @@ public final class Grader {
             if (refBytes == null) {
                 msg = "grader setup problem: no reference image " + sc.reference();
             } else if (mine == null || errors.get(i) != null) {
-                msg = late.get(i) ? "the renders took longer than " + limit.toSeconds()
-                                + " s and were stopped (an endless loop, or far too slow?)"
+                msg = late.get(i) ? "your code used more than " + limit.toSeconds()
+                                + " s of CPU time in the renders and was stopped (an endless loop, or far too slow?)"
+                        : errLine.startsWith(raylab.course.TestResult.GRADING_FAILED) ? GradingStatus.message(errLine)
                         : !errLine.isEmpty() ? raylab.course.Explain.renderFailure(errLine, studentFiles)
                         : outOfMemory ? "the render ran out of memory (" + options.sceneHeapMb()
                                 + " MB): look for something that grows with every ray, such as a list or an array"

@@ -410,7 +410,8 @@ public final class GradeAllCommand implements Callable<Integer> {
                 e.setValue(Math.round(e.getValue() * 100) / 100.0);
                 total += e.getValue();
             }
-            return new Row(student, per, Math.round(total * 100) / 100.0, "graded");
+            // A grading that failed on the grader's side decided nothing: its row says so.
+            return new Row(student, per, Math.round(total * 100) / 100.0, raylab.grade.GradingStatus.ofGradescope(n).label());
         } catch (IOException | RuntimeException e) {
             return new Row(student, Map.of(), 0, "failed");
         }
