@@ -50,6 +50,11 @@ public final class Remote {
         return process == null ? 0 : process.studentTimeNanos();
     }
 
+    /** A test begins with a limit of {@code limitNanos} of the student's time ({@link StudentProcess#startTest}). */
+    public static void startTest(long limitNanos) {
+        process().startTest(limitNanos);
+    }
+
     /** The CPU time of this JVM's student processes so far ({@link StudentProcess#studentCpuNanos}); 0 before one exists. */
     public static synchronized long studentCpuNanos() {
         return process == null ? 0 : process.studentCpuNanos();

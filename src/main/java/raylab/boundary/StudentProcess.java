@@ -103,6 +103,10 @@ public final class StudentProcess implements AutoCloseable {
      * or its wall time less the time it waited for a CPU or for the grader, whichever is more).
      */
     private volatile long studentTime;
+    /** The student's time when the current test began, and the test's limit in it (0: none). */
+    private volatile long testStart;
+    private volatile long testLimit;
+    private volatile boolean testTimedOut;
     /** Run before each frame of an outermost call (a render's deadline), or null. */
     private Runnable beforeFrame;
     private static final java.lang.management.ThreadMXBean THREADS = java.lang.management.ManagementFactory.getThreadMXBean();
@@ -174,6 +178,10 @@ public final class StudentProcess implements AutoCloseable {
             studentTime = ownBefore + ownNow;
             long budget = Math.max(starting ? 30_000 : 0, config.callBudgetMillis()) * 1_000_000L;
             if (used > budget || own > 3 * budget + 5_000_000_000L) {
+                timedOut = true;
+                kill(p);
+            } else if (testLimit > 0 && studentTime - testStart > testLimit) {
+                testTimedOut = true;
                 timedOut = true;
                 kill(p);
             }
@@ -264,6 +272,16 @@ public final class StudentProcess implements AutoCloseable {
      */
     public long studentTimeNanos() {
         return studentTime;
+    }
+
+    /**
+     * A test begins: from now on its calls together may take {@code limitNanos} of the student's
+     * time ({@link #studentTimeNanos}); the call that passes it is stopped ("... in this test").
+     * 0: no limit beyond each call's.
+     */
+    public void startTest(long limitNanos) {
+        testStart = studentTime;
+        testLimit = limitNanos;
     }
 
     /**
@@ -795,6 +813,11 @@ public final class StudentProcess implements AutoCloseable {
             if (outOfMemory) {
                 throw new StudentException("java.lang.OutOfMemoryError", "your code ran out of memory (look for"
                         + " something that grows with every call, such as a list kept in a static field)", List.of(), "");
+            }
+            if (slow && testTimedOut) {
+                testTimedOut = false;
+                throw new StudentTimeout("your code took longer than " + testLimit / 1e9 + " s in this test and was"
+                        + " stopped (an endless loop?)");
             }
             if (slow) {
                 throw new StudentTimeout("your code took longer than " + config.callBudgetMillis() / 1000.0

@@ -7,9 +7,10 @@ import java.util.concurrent.ConcurrentHashMap;
  * A test's time limit through the process boundary, measured in the student's own time: the
  * CPU time of the student process during the test, or the wall time of its calls less the time
  * they waited for a CPU or for the grader's answers, whichever is more
- * ({@code raylab.boundary.StudentProcess#studentTimeNanos}). Each call is stopped at its own
- * budget by the student process's watchdog; JUnit's clock runs on wall time and is only a guard
- * ({@link #guardSeconds}); when it fires, this says whose time it was.
+ * ({@code raylab.boundary.StudentProcess#studentTimeNanos}). The student process's watchdog
+ * stops a call at its own budget and at the test's limit ({@code StudentProcess#startTest});
+ * JUnit's clock runs on wall time and is only a guard ({@link #guardSeconds}); when it fires,
+ * this says whose time it was.
  */
 final class StudentTime {
     private final int limitSeconds;
@@ -24,8 +25,15 @@ final class StudentTime {
         return 6 * seconds + 60;
     }
 
+    /** A test begins: the student process stops a call once the test's student time passes the limit. */
     void start(String test) {
         atStart.put(test, now());
+        try {
+            Class.forName("raylab.boundary.Remote").getMethod("startTest", long.class).invoke(null,
+                    limitSeconds * 1_000_000_000L);
+        } catch (ReflectiveOperationException | RuntimeException | LinkageError e) {
+            // no student process: nothing to limit
+        }
     }
 
     /** Why the student's code is at fault after the guard fired (its own time reached the limit), or null. */

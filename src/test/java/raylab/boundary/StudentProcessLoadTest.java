@@ -24,8 +24,9 @@ import raylab.surface.Box;
  * core) is not stopped although its wall time passes the wall limit; the grader's time
  * answering a question is not the student's; the grader's CPU time answering one call's
  * questions has a bound of its own; a process killed from outside is called again, and killed
- * twice is a {@link GradingFailure}; a frame check stops a call before it is sent; a call that
- * sleeps is still stopped by its wall limit (3 × budget + 5 s).
+ * twice is a {@link GradingFailure}; a frame check stops a call before it is sent; a test's
+ * calls together stop at the test's limit; a call that sleeps is still stopped by its wall
+ * limit (3 × budget + 5 s).
  */
 class StudentProcessLoadTest {
     static final double WALL_LIMIT_S = 3 * 1.0 + 5; // for a budget of 1 s
@@ -178,6 +179,19 @@ class StudentProcessLoadTest {
             late.set(false);
             assertEquals(3.0, p.call("raylab.remote.Echo", "echo", null, 3.0), "the process goes on");
             assertEquals(1, p.starts());
+        }
+    }
+
+    @Test
+    void aTestsCallsTogetherAreStoppedAtTheTestsLimitOfTheStudentsTime() {
+        try (StudentProcess p = StudentProcessTest.start(20_000)) {
+            p.startTest(2_500_000_000L);
+            assertEquals(1_000L, p.call("raylab.remote.Echo", "nap", null, 1_000L));
+            assertEquals(1_000L, p.call("raylab.remote.Echo", "nap", null, 1_000L));
+            StudentTimeout e = assertThrows(StudentTimeout.class, () -> p.call("raylab.remote.Echo", "nap", null, 5_000L));
+            assertEquals("your code took longer than 2.5 s in this test and was stopped (an endless loop?)", e.getMessage());
+            p.startTest(2_500_000_000L);
+            assertEquals(1_000L, p.call("raylab.remote.Echo", "nap", null, 1_000L), "the next test has its own time");
         }
     }
 
