@@ -42,6 +42,24 @@ public final class Remote {
         return process;
     }
 
+    /**
+     * The student's own time in this JVM's student process so far
+     * ({@link StudentProcess#studentTimeNanos}); 0 before it exists.
+     */
+    public static synchronized long studentNanos() {
+        return process == null ? 0 : process.studentTimeNanos();
+    }
+
+    /** A test begins with a limit of {@code limitNanos} of the student's time ({@link StudentProcess#startTest}). */
+    public static void startTest(long limitNanos) {
+        process().startTest(limitNanos);
+    }
+
+    /** The CPU time of this JVM's student processes so far ({@link StudentProcess#studentCpuNanos}); 0 before one exists. */
+    public static synchronized long studentCpuNanos() {
+        return process == null ? 0 : process.studentCpuNanos();
+    }
+
     /** Starts the student process now (before any test's time limit runs). */
     public static void warmUp() {
         process().ensureStarted();

@@ -43,6 +43,15 @@ import raylab.surface.Surface;
  * call over it, or a crash, stops the process, the call fails with a {@link StudentTimeout} or a
  * {@link StudentException}, and the next call starts a fresh process, at most
  * {@code maxRestarts} times.
+ *
+ * <p>Load is never the student's: a call's wall time counts only the time its process neither
+ * ran nor waited for a CPU ({@code /proc/PID/task/TID/schedstat}) and the grader was not
+ * answering its questions, so that only code that sleeps or blocks runs into the wall limit
+ * (3 × budget + 5 s). The grader's own time answering one call's questions has a bound of its
+ * own (its thread's CPU time, the call's budget): student code cannot make it work without
+ * limit. A process killed by something other than this class (the kernel's OOM killer, for
+ * memory taken elsewhere) is not the student's doing: the call is made again in a fresh
+ * process, and if that is killed too, the call fails with a {@link GradingFailure}.
  */
 public final class StudentProcess implements AutoCloseable {
     /** How the student process is started: its command line, and which classes it serves. */
@@ -78,6 +87,29 @@ public final class StudentProcess implements AutoCloseable {
     private final Thread watchdog;
     private volatile boolean closed;
     private long calls;
+    /** Wall time the grader spent answering the current call's questions (not the student's time). */
+    private volatile long trustedWall;
+    /** When the grader began the answer it is working on ({@link System#nanoTime}), 0: none. */
+    private volatile long answering;
+    /** Milliseconds added to each answer of the grader's (-Draylab.boundary.slowGrader=MS: tests of a slow grader). */
+    private static final long SLOW_GRADER_MILLIS = Long.getLong("raylab.boundary.slowGrader", 0);
+    /** CPU time of the grader's thread answering the current call's questions. */
+    private long trustedCpu;
+    /** The current process's CPU time as the watchdog last read it, and that of the processes that ended. */
+    private volatile long sampledCpu;
+    private long endedCpu;
+    /**
+     * The student's own time in calls so far, as the watchdog measured it (each call's CPU time,
+     * or its wall time less the time it waited for a CPU or for the grader, whichever is more).
+     */
+    private volatile long studentTime;
+    /** The student's time when the current test began, and the test's limit in it (0: none). */
+    private volatile long testStart;
+    private volatile long testLimit;
+    private volatile boolean testTimedOut;
+    /** Run before each frame of an outermost call (a render's deadline), or null. */
+    private Runnable beforeFrame;
+    private static final java.lang.management.ThreadMXBean THREADS = java.lang.management.ManagementFactory.getThreadMXBean();
 
     public StudentProcess(Config config) {
         this.config = config;
@@ -96,6 +128,12 @@ public final class StudentProcess implements AutoCloseable {
         return calls;
     }
 
+    /** The id of the current student process (−1: none); not synchronized, for tests while a call runs. */
+    long pid() {
+        Process p = proc;
+        return p == null ? -1 : p.pid();
+    }
+
     /** How often a student process was started. */
     public synchronized int starts() {
         return starts;
@@ -104,6 +142,9 @@ public final class StudentProcess implements AutoCloseable {
     private void watch() {
         long seen = -1;
         long baseline = 0;
+        long waitedBase = 0;
+        long ownBefore = 0;
+        long ownNow = 0;
         while (!closed) {
             try {
                 Thread.sleep(25);
@@ -118,16 +159,29 @@ public final class StudentProcess implements AutoCloseable {
             // The CPU time at the first look at a call is its baseline (at most one tick late):
             // reading /proc at every call would cost more than the call.
             long cpu = watchedCpuNanos(p);
+            sampledCpu = cpu;
             if (call != seen) {
                 seen = call;
                 baseline = starting ? 0 : cpu;
+                waitedBase = waited;
+                ownBefore += ownNow;
+                ownNow = 0;
                 continue;
             }
             long used = cpu - baseline;
-            long wall = System.nanoTime() - callStartWall;
+            // Wall time too, more generously: a student process that sleeps uses no CPU. But not
+            // the time it waited for a CPU (the machine's load) or for the grader's answers.
+            long since = answering;
+            long wall = System.nanoTime() - callStartWall - trustedWall - (since == 0 ? 0 : System.nanoTime() - since);
+            long own = wall - Math.min(Math.max(0, wall), waited - waitedBase);
+            ownNow = Math.max(ownNow, Math.max(own, used));
+            studentTime = ownBefore + ownNow;
             long budget = Math.max(starting ? 30_000 : 0, config.callBudgetMillis()) * 1_000_000L;
-            // Wall time too, more generously: a student process that sleeps uses no CPU.
-            if (used > budget || wall > 3 * budget + 5_000_000_000L) {
+            if (used > budget || own > 3 * budget + 5_000_000_000L) {
+                timedOut = true;
+                kill(p);
+            } else if (testLimit > 0 && studentTime - testStart > testLimit) {
+                testTimedOut = true;
                 timedOut = true;
                 kill(p);
             }
@@ -142,10 +196,15 @@ public final class StudentProcess implements AutoCloseable {
     private Process watched;
     private List<Long> watchedPids = List.of();
     private long pidsListed;
+    /** Time the watched processes' threads waited for a CPU, summed since the watchdog began (ns). */
+    private long waited;
+    private final Map<Long, Long> runDelays = new HashMap<>();
+    private long delaysRead;
 
     /**
      * As {@link #cpuNanos}, with the process's descendants listed again only every second:
-     * listing them reads every process of the machine from /proc.
+     * listing them reads every process of the machine from /proc. Every quarter second it also
+     * adds to {@link #waited} how long their threads waited on a run queue since the last look.
      */
     private long watchedCpuNanos(Process p) {
         long now = System.nanoTime();
@@ -161,7 +220,83 @@ public final class StudentProcess implements AutoCloseable {
         for (long pid : watchedPids) {
             t += ticks(pid);
         }
+        if (now - delaysRead > 250_000_000L) {
+            delaysRead = now;
+            waited += runDelaySince(watchedPids, runDelays);
+        }
         return t * 10_000_000L;
+    }
+
+    /**
+     * Nanoseconds the threads of {@code pids} waited on a run queue (runnable, no CPU free) since
+     * {@code last} (thread id to its total at the last look, updated; a new thread counts from
+     * its start). 0 where the kernel does not keep schedstat.
+     */
+    static long runDelaySince(List<Long> pids, Map<Long, Long> last) {
+        long added = 0;
+        Map<Long, Long> now = new HashMap<>();
+        for (long pid : pids) {
+            java.io.File[] tasks = new java.io.File("/proc/" + pid + "/task").listFiles();
+            if (tasks == null) {
+                continue;
+            }
+            for (java.io.File task : tasks) {
+                try {
+                    long tid = Long.parseLong(task.getName());
+                    String[] f = Files.readString(task.toPath().resolve("schedstat")).trim().split(" ");
+                    long delay = Long.parseLong(f[1]);
+                    now.put(tid, delay);
+                    added += Math.max(0, delay - last.getOrDefault(tid, 0L));
+                } catch (IOException | RuntimeException e) {
+                    // the thread ended, or no schedstat
+                }
+            }
+        }
+        last.clear();
+        last.putAll(now);
+        return added;
+    }
+
+    /**
+     * CPU time of every student process this object started, so far (the current one as the
+     * watchdog last read it, at most a few ticks behind), in ns.
+     */
+    public synchronized long studentCpuNanos() {
+        return endedCpu + (proc == null ? 0 : sampledCpu);
+    }
+
+    /**
+     * The student's own time in calls so far (ns): for each call its CPU time, or its wall time
+     * less the time it waited for a CPU or for the grader's answers, whichever is more; at most a
+     * quarter of a second behind. What a test's time limit is measured in.
+     */
+    public long studentTimeNanos() {
+        return studentTime;
+    }
+
+    /**
+     * A test begins: from now on its calls together may take {@code limitNanos} of the student's
+     * time ({@link #studentTimeNanos}); the call that passes it is stopped ("... in this test").
+     * 0: no limit beyond each call's.
+     */
+    public void startTest(long limitNanos) {
+        testStart = studentTime;
+        testLimit = limitNanos;
+    }
+
+    /**
+     * A check run before each frame of an outermost call is sent (null: none): what it throws
+     * ends the call there, the process ready for the next. The renders check their deadline so,
+     * inside a band as well as between bands.
+     */
+    public synchronized void beforeEachFrame(Runnable check) {
+        this.beforeFrame = check;
+    }
+
+    private void checkpoint() {
+        if (depth == 1 && beforeFrame != null) {
+            beforeFrame.run();
+        }
     }
 
     /** CPU time of the current student process (0 if none runs), for measurements. */
@@ -258,6 +393,8 @@ public final class StudentProcess implements AutoCloseable {
     private void dead() {
         Process p = proc;
         proc = null;
+        endedCpu += sampledCpu;
+        sampledCpu = 0;
         if (p != null) {
             kill(p);
             try {
@@ -308,6 +445,7 @@ public final class StudentProcess implements AutoCloseable {
      */
     public synchronized List<Object> batch(String cls, String name, Object target, List<Object[]> argLists) {
         return run(() -> {
+            checkpoint();
             int m = method(cls, name, argLists.isEmpty() ? 0 : argLists.get(0).length);
             buf.reset();
             buf.writeInt(m);
@@ -428,6 +566,7 @@ public final class StudentProcess implements AutoCloseable {
 
     /** One MULTI frame each way; returns the calls sent back with questions, now answered. */
     private List<MultiCall> multiRound(List<MultiCall> batch, boolean defer) throws IOException {
+        checkpoint();
         buf.reset();
         buf.writeInt(batch.size());
         Wire.Out q = new Wire.Out();
@@ -589,7 +728,42 @@ public final class StudentProcess implements AutoCloseable {
         T run() throws IOException;
     }
 
+    /**
+     * The student process was killed, by a signal that neither the watchdog nor the student's
+     * own JVM sent (the OOM killer, for memory taken elsewhere): not the student's doing.
+     */
+    private static final class KilledFromOutside extends StudentTimeout {
+        private static final long serialVersionUID = 1L;
+
+        KilledFromOutside(String why) {
+            super(why);
+        }
+    }
+
+    /**
+     * Runs one call; an outermost call whose process was killed from outside is made once more
+     * in a fresh process (its start not counted against the student), and if that is killed
+     * too, fails with a {@link GradingFailure}.
+     */
     private <T> T run(Body<T> body) {
+        if (depth > 0) {
+            return attempt(body);
+        }
+        try {
+            return attempt(body);
+        } catch (KilledFromOutside first) {
+            starts--;
+            try {
+                return attempt(body);
+            } catch (KilledFromOutside again) {
+                starts--;
+                throw new GradingFailure("the student process was killed twice during one call by something other than"
+                        + " the grader or the student's code (" + again.getMessage() + "): the machine, probably its memory");
+            }
+        }
+    }
+
+    private <T> T attempt(Body<T> body) {
         boolean outer = depth == 0;
         try {
             if (proc == null) {
@@ -598,6 +772,9 @@ public final class StudentProcess implements AutoCloseable {
             if (outer) {
                 timedOut = false;
                 callStartWall = System.nanoTime();
+                trustedWall = 0;
+                trustedCpu = 0;
+                answering = 0;
                 callSeq = ++callCount;
             }
             depth++;
@@ -611,17 +788,29 @@ public final class StudentProcess implements AutoCloseable {
             String why = firstLine(stderr);
             Process p = proc;
             boolean outOfMemory = false;
+            boolean killed = false;
             if (p != null && !slow) {
                 try {
-                    outOfMemory = p.waitFor(2, java.util.concurrent.TimeUnit.SECONDS) && p.exitValue() == 3;
+                    boolean ended = p.waitFor(2, java.util.concurrent.TimeUnit.SECONDS);
+                    outOfMemory = ended && p.exitValue() == 3;
+                    // 128 + SIGKILL: the sandbox's shell and unshare pass the JVM's death on as their own.
+                    killed = ended && p.exitValue() == 128 + 9;
                 } catch (InterruptedException ie) {
                     Thread.currentThread().interrupt();
                 }
             }
             dead();
+            if (killed) {
+                throw new KilledFromOutside("SIGKILL" + (why.isEmpty() ? "" : ", " + why));
+            }
             if (outOfMemory) {
                 throw new StudentException("java.lang.OutOfMemoryError", "your code ran out of memory (look for"
                         + " something that grows with every call, such as a list kept in a static field)", List.of(), "");
+            }
+            if (slow && testTimedOut) {
+                testTimedOut = false;
+                throw new StudentTimeout("your code took longer than " + testLimit / 1e9 + " s in this test and was"
+                        + " stopped (an endless loop?)");
             }
             if (slow) {
                 throw new StudentTimeout("your code took longer than " + config.callBudgetMillis() / 1000.0
@@ -764,14 +953,36 @@ public final class StudentProcess implements AutoCloseable {
             throw new Wire.ProtocolException("a question sent back that must be asked");
         }
         Object result;
+        long w0 = System.nanoTime();
+        long c0 = THREADS.getCurrentThreadCpuTime();
         try {
             result = answer(q.target(), q.op(), q.args());
         } catch (StudentTimeout e) {
             throw e; // the process is gone
         } catch (RuntimeException | Error e) {
             return null;
+        } finally {
+            bill(w0, c0);
         }
         return answerPayload(result, q.args()).key().bytes();
+    }
+
+    /**
+     * Adds the time since {@code wall0} and this thread's CPU time since {@code cpu0} to the
+     * grader's time answering the current call's questions; over the call's budget of the
+     * grader's CPU time, the student process is stopped and the call fails: its questions made
+     * the grader work without limit.
+     */
+    private void bill(long wall0, long cpu0) {
+        answering = 0;
+        trustedWall += System.nanoTime() - wall0;
+        trustedCpu += Math.max(0, THREADS.getCurrentThreadCpuTime() - cpu0);
+        long bound = Math.max(1_000, config.callBudgetMillis()) * 1_000_000L;
+        if (trustedCpu > bound && proc != null) {
+            dead();
+            throw new StudentTimeout("your code asked the grader so much during one call that answering took more than "
+                    + bound / 1_000_000_000.0 + " s of the grader's CPU time, and it was stopped (questions in an endless loop?)");
+        }
     }
 
     /** A question of the student's code: the grader's object asked (null: unknown), the operation, the arguments. */
@@ -813,11 +1024,15 @@ public final class StudentProcess implements AutoCloseable {
         Question q = question(f.in());
         Object[] a = q.args();
         Object result;
+        long w0 = System.nanoTime();
+        long c0 = THREADS.getCurrentThreadCpuTime();
         try {
             result = answer(q.target(), q.op(), a);
+            bill(w0, c0);
         } catch (StudentTimeout e) {
             throw e; // the process is gone
         } catch (RuntimeException | Error e) {
+            bill(w0, c0);
             if (e instanceof StudentException s) {
                 pendingFailure = s;
             }
@@ -831,7 +1046,21 @@ public final class StudentProcess implements AutoCloseable {
         out.flush();
     }
 
-    private static Object answer(Object t, byte op, Object[] a) {
+    private Object answer(Object t, byte op, Object[] a) {
+        if (answering == 0) {
+            answering = System.nanoTime();
+        }
+        if (SLOW_GRADER_MILLIS > 0) {
+            try {
+                Thread.sleep(SLOW_GRADER_MILLIS);
+            } catch (InterruptedException e) {
+                Thread.currentThread().interrupt();
+            }
+        }
+        return answerOf(t, op, a);
+    }
+
+    private static Object answerOf(Object t, byte op, Object[] a) {
         if (t == null) {
             throw new IllegalStateException("no such object of the grader (kept from an earlier call?)");
         }

@@ -86,7 +86,7 @@ public final class TrustedRender {
 
 
     private static void checkTime() {
-        if (timed && System.nanoTime() - deadline > 0) {
+        if (timed && (budget < 0 || Remote.process().studentCpuNanos() - cpuAtStart > budget)) {
             throw new OutOfTime();
         }
     }
@@ -200,23 +200,33 @@ public final class TrustedRender {
         }
     }
 
-    /** The deadline of this JVM's renders ({@link System#nanoTime}), if {@link #timed}; checked between bands. */
-    private static long deadline;
+    /**
+     * The renders' time limit, if {@link #timed}: the student processes' CPU time from
+     * {@link #cpuAtStart} on (never the grader's, never time spent waiting for a CPU), checked
+     * between bands and before every frame sent within a band.
+     */
+    private static long budget;
+    private static long cpuAtStart;
     private static boolean timed;
 
     /**
      * Renders the scenes of {@code args} (triples SCENE.json OUT.png NAME) one after the other with
      * this JVM's student process, batched by the milestone's reference named in the system
      * property {@code raylab.boundary.references} if it is set. A scene that fails leaves
-     * {@code OUT.png.err} (its first line says why); once {@code deadlineNanos}
-     * ({@link System#nanoTime}) has passed, the scene being rendered and those after it leave
-     * {@code OUT.png.timeout} instead. A batched render also leaves the reference solution's
+     * {@code OUT.png.err} (its first line says why); once the student's code has used as much
+     * CPU time as there is from now to {@code deadlineNanos} ({@link System#nanoTime}: the
+     * renders' limit), the scene being rendered and those after it leave {@code OUT.png.timeout}
+     * instead. A batched render also leaves the reference solution's
      * image, {@code OUT.png.reference.png}, when its first rounds traced every pixel ({@link Long#MAX_VALUE}: no deadline). Timings go to {@code times} when RAYLAB_GRADE_TIMES is set.
      */
     public static void renderAll(java.util.List<String> args, long deadlineNanos, java.io.PrintStream times)
             throws java.io.IOException {
-        deadline = deadlineNanos;
         timed = deadlineNanos != Long.MAX_VALUE;
+        budget = deadlineNanos - System.nanoTime();
+        if (timed && budget >= 0) {
+            cpuAtStart = Remote.process().studentCpuNanos();
+            Remote.process().beforeEachFrame(TrustedRender::checkTime);
+        }
         for (int i = 0; i + 2 < args.size(); i += 3) {
             Path out = Path.of(args.get(i + 1));
             String err = null;
@@ -257,6 +267,8 @@ public final class TrustedRender {
                 continue;
             } catch (StudentException | StudentTimeout e) {
                 err = e.getMessage();
+            } catch (GradingFailure e) {
+                err = GradingFailure.PREFIX + e.getMessage();
             } catch (Throwable t) {
                 err = t.toString();
             }
@@ -280,7 +292,11 @@ public final class TrustedRender {
     }
 
     public static void main(String[] args) throws Exception {
-        renderAll(java.util.Arrays.asList(args), Long.MAX_VALUE, System.err);
+        // -Draylab.boundary.renderSeconds=S: the renders' limit, S s of the student's CPU time (the grader's
+        // render JVM of a milestone without tests); without it, none.
+        long seconds = Long.getLong("raylab.boundary.renderSeconds", -1);
+        renderAll(java.util.Arrays.asList(args), seconds < 0 ? Long.MAX_VALUE : System.nanoTime() + seconds * 1_000_000_000L,
+                System.err);
         if (Boolean.getBoolean("raylab.boundary.exit")) {
             System.exit(0); // shutdown hooks run (a profiler's dump on exit; measurements only)
         }

@@ -126,12 +126,22 @@ public final class TestLauncher {
      * process boundary, whose stand-ins call a student process): it sees every module of the
      * JDK, since {@code --limit-modules} would turn class data sharing off and only guards a
      * JVM where student code runs.
+     *
+     * <p>There every limit of the student's is in the student's own time (each call's, each
+     * test's: {@link StudentTime}; the renders'), so the JVM's wall clock is only a guard, at
+     * {@link #GUARD_FACTOR} × {@code limits.wallClock()}: when it fires, the tests not reported
+     * fail as a grading failure ({@link TestResult#GRADING_FAILED}), not as the student's.
      */
     public static Outcome runTrusted(List<Path> classPath, Path testClasses, List<String> classes, Limits limits,
             Path workDir, List<TestResult> expected, List<String> jvmOptions) throws IOException {
-        return launch(classPath, testClasses, List.of(), classes, limits, workDir, false, expected, List.of(),
-                jvmOptions, false);
+        Limits guard = new Limits(limits.heapMegabytes(), limits.wallClock().multipliedBy(GUARD_FACTOR),
+                limits.perTestSeconds(), limits.outputCapBytes());
+        return launch(classPath, testClasses, List.of(), classes, guard, workDir, false, expected, List.of(),
+                jvmOptions, false, true);
     }
+
+    /** How much longer than its limits the wall clock of a trusted JVM runs ({@link #runTrusted}). */
+    public static final int GUARD_FACTOR = 3;
 
     private static Outcome launch(List<Path> classPath, Path testClasses, List<String> tags, List<String> classes,
             Limits limits, Path workDir, boolean list, List<TestResult> expected, List<String> wrapper,
@@ -143,6 +153,13 @@ public final class TestLauncher {
     private static Outcome launch(List<Path> classPath, Path testClasses, List<String> tags, List<String> classes,
             Limits limits, Path workDir, boolean list, List<TestResult> expected, List<String> wrapper,
             List<String> jvmOptions, boolean limitModules) throws IOException {
+        return launch(classPath, testClasses, tags, classes, limits, workDir, list, expected, wrapper, jvmOptions,
+                limitModules, false);
+    }
+
+    private static Outcome launch(List<Path> classPath, Path testClasses, List<String> tags, List<String> classes,
+            Limits limits, Path workDir, boolean list, List<TestResult> expected, List<String> wrapper,
+            List<String> jvmOptions, boolean limitModules, boolean wallIsGuard) throws IOException {
         String java = Path.of(System.getProperty("java.home"), "bin", "java").toString();
         List<String> cmd = new ArrayList<>(wrapper);
         cmd.add(java);
@@ -235,7 +252,11 @@ public final class TestLauncher {
                 if (r == null) {
                     String why;
                     TestResult.Status s;
-                    if (e.id().equals(current[0])) {
+                    if (wallIsGuard && !exited) {
+                        s = TestResult.Status.FAILED;
+                        why = TestResult.GRADING_FAILED + "the grader's test JVM was " + problem + ", although every limit"
+                                + " of the student's code is in its own time: the machine or the grader was too slow";
+                    } else if (e.id().equals(current[0])) {
                         s = exited ? TestResult.Status.CRASHED : TestResult.Status.TIMED_OUT;
                         why = "this test was running when " + (problem.isEmpty() ? "the run stopped" : problem);
                     } else {

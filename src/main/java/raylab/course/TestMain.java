@@ -130,12 +130,19 @@ public final class TestMain {
             System.exit(0);
         }
         Map<String, Long> started = new ConcurrentHashMap<>();
+        // Through the boundary a test's limit is the student's own time in its calls (StudentTime);
+        // JUnit's clock, on wall time, is only a guard against a grader that hangs.
+        StudentTime studentTime = System.getProperty("raylab.boundary") != null ? new StudentTime(timeout) : null;
+        int junitTimeout = studentTime == null ? timeout : StudentTime.guardSeconds(timeout);
         TestExecutionListener listener = new TestExecutionListener() {
             @Override
             public void executionStarted(TestIdentifier t) {
                 if (t.isTest()) {
                     captured.reset();
                     started.put(t.getUniqueId(), System.nanoTime());
+                    if (studentTime != null) {
+                        studentTime.start(t.getUniqueId());
+                    }
                     channel.send("START " + t.getUniqueId());
                 }
             }
@@ -164,6 +171,13 @@ public final class TestMain {
                     case ABORTED -> TestResult.Status.ABORTED;
                     case FAILED -> isTimeout(r) ? TestResult.Status.TIMED_OUT : TestResult.Status.FAILED;
                 };
+                if (s == TestResult.Status.TIMED_OUT && studentTime != null) {
+                    // The guard fired: the student's code, if its own time reached the limit; else
+                    // the machine or the grader, which is no failure of the student's (no points decided).
+                    String own = studentTime.overLimit(t.getUniqueId(), ms);
+                    send(t, own == null ? TestResult.Status.FAILED : s, own == null ? studentTime.notTheStudents(ms) : own, ms);
+                    return;
+                }
                 send(t, s, s == TestResult.Status.PASSED ? "" : firstLines(r), ms);
             }
 
@@ -184,7 +198,7 @@ public final class TestMain {
                 Class.forName("raylab.boundary.Remote").getMethod("switchTo", Path.class)
                         .invoke(null, Path.of(groupBoundary.get(g)));
             }
-            launcher.execute(request(groups.get(g), testClasses, tags, timeout), listener);
+            launcher.execute(request(groups.get(g), testClasses, tags, junitTimeout), listener);
         }
         channel.send("END");
         if (render != null) {

@@ -16,6 +16,18 @@ package raylab.course;
 public record TestResult(String id, String className, String method, String displayName, Status status,
         String message, String output, long millis) {
 
+    /**
+     * How the message of a test begins when the grading failed in it, not the student's code
+     * (the trusted side's {@code raylab.boundary.GradingFailure}, or a time limit that fired on
+     * time that was not the student's): no points are decided by such a test.
+     */
+    public static final String GRADING_FAILED = "GradingFailure: ";
+
+    /** Whether this test's outcome is a failure of the grading itself ({@link #GRADING_FAILED}). */
+    public boolean gradingFailed() {
+        return status != Status.PASSED && message != null && message.startsWith(GRADING_FAILED);
+    }
+
     /** What happened to a test. */
     public enum Status {
         PASSED, FAILED, ABORTED, TIMED_OUT, CRASHED, MISSING;

@@ -79,8 +79,34 @@ public final class GradeCommand implements Callable<Integer> {
         "the report names it, so that a regrade with --seed N grades the same variants)."})
     Long seed;
 
+    @Option(names = "--die-with-parent", hidden = true,
+            description = "End (with every process it started) when standard input closes: grade-all's pipe.")
+    boolean dieWithParent;
+
+    @Option(names = "--lock", paramLabel = "FILE", hidden = true,
+            description = "Hold a lock on FILE while grading; refuse (exit 1) if another grading holds it 60 s.")
+    Path lock;
+
     @Override
     public Integer call() throws IOException {
+        if (dieWithParent) {
+            raylab.grade.platform.ClassScale.dieWithParent("raylab grade");
+        }
+        if (lock == null) {
+            return grade();
+        }
+        Files.createDirectories(lock.toAbsolutePath().getParent());
+        // A grading being stopped (its grade-all was killed) lets go within moments; a live one does not.
+        try (raylab.grade.platform.ClassScale.Lock l = raylab.grade.platform.ClassScale.Lock.take(lock, 60_000)) {
+            if (l == null) {
+                System.err.println("raylab: another grading is writing " + out + " (" + lock + " is locked); not graded");
+                return 1;
+            }
+            return grade();
+        }
+    }
+
+    private int grade() throws IOException {
         if (!Files.isDirectory(submission) && !Files.isRegularFile(submission)) {
             // A wrong path is a bad option (exit 2, one line), not a submission scored 0.
             throw raylab.cli.UserError.badInput(raylab.scene.Display.path(submission) + ": "

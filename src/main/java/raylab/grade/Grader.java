@@ -872,13 +872,14 @@ public final class Grader {
                 if (!r.status().passed()) {
                     failedCount++;
                     if (passed) {
-                        message = explain(r, g.size() > 1 ? r.displayName() : null);
+                        message = r.gradingFailed() ? GradingStatus.message(r.message())
+                                : explain(r, g.size() > 1 ? r.displayName() : null);
                         output = r.output() == null ? "" : r.output();
                     }
                     passed = false;
                 }
             }
-            if (failedCount > 1 && g.size() > 1) {
+            if (failedCount > 1 && g.size() > 1 && !message.startsWith(GradingStatus.STUDENT_MESSAGE)) {
                 message = failedCount + " of " + g.size() + " cases failed; the first: " + message;
             }
             if (kind != Kind.VISIBLE) {
@@ -993,7 +994,9 @@ public final class Grader {
                 "-XX:+DisableAttachMechanism", "-XX:-UsePerfData",
                 // Quick to start: C1 only (a render of seconds pays C2's compile time back rarely).
                 "-XX:+UseSerialGC", "-XX:TieredStopAtLevel=1",
-                "-Draylab.boundary=" + config));
+                "-Draylab.boundary=" + config,
+                // The renders' limit in the student's CPU time; this JVM's wall clock below is only a guard.
+                "-Draylab.boundary.renderSeconds=" + options.sceneLimit().multipliedBy(a.scenes().size()).toSeconds()));
         cmd.addAll(JvmOptions.trusted(options.sceneHeapMb()));
         cmd.addAll(extraJvmOptions("RAYLAB_RENDER_JVM_OPTS"));
         cmd.addAll(List.of(
@@ -1017,7 +1020,7 @@ public final class Grader {
             p = pb.start();
             p.getOutputStream().close();
             try {
-                if (!p.waitFor(limit.toMillis(), java.util.concurrent.TimeUnit.MILLISECONDS)) {
+                if (!p.waitFor(limit.toMillis() * TestLauncher.GUARD_FACTOR, java.util.concurrent.TimeUnit.MILLISECONDS)) {
                     timedOut = true;
                 }
             } catch (InterruptedException e) {
@@ -1070,14 +1073,16 @@ public final class Grader {
             if (refBytes == null) {
                 msg = "grader setup problem: no reference image " + sc.reference();
             } else if (mine == null || errors.get(i) != null) {
-                msg = late.get(i) ? "the renders took longer than " + limit.toSeconds()
-                                + " s and were stopped (an endless loop, or far too slow?)"
+                msg = late.get(i) ? "your code used more than " + limit.toSeconds()
+                                + " s of CPU time in the renders and was stopped (an endless loop, or far too slow?)"
+                        : errLine.startsWith(raylab.course.TestResult.GRADING_FAILED) ? GradingStatus.message(errLine)
                         : !errLine.isEmpty() ? raylab.course.Explain.renderFailure(errLine, studentFiles)
                         : outOfMemory ? "the render ran out of memory (" + options.sceneHeapMb()
                                 + " MB): look for something that grows with every ray, such as a list or an array"
                                 + " allocated per hit and kept"
-                        : timedOut ? "the renders took longer than " + limit.toSeconds()
-                                + " s and were stopped (an endless loop, or far too slow?)"
+                        : timedOut ? GradingStatus.message("the grader's render JVM was stopped by its wall-clock guard"
+                                + " before this scene was rendered, although the renders' limit is in the student's CPU"
+                                + " time: the machine or the grader was too slow")
                         : "no image was rendered (the render JVM ended early: System.exit or a crash)";
                 shown = new GradeReport.Images(null, refBytes, null, "");
             } else {

@@ -26,4 +26,20 @@ public final class Echo {
         System.out.println("student says " + o);
         return 7;
     }
+
+    /** Sleeps {@code ms} milliseconds (a number), then gives it back: a call that takes wall time and no CPU. */
+    public static Object nap(Object ms) throws InterruptedException {
+        Thread.sleep(((Number) ms).longValue());
+        return ms;
+    }
+
+    /** Computes {@code millions} million square roots (a number; a fixed amount of CPU work), then gives the count back. */
+    public static Object work(Object millions) {
+        long n = ((Number) millions).longValue() * 1_000_000L;
+        double x = 1;
+        for (long i = 0; i < n; i++) {
+            x = Math.sqrt(x + i);
+        }
+        return x > 0 ? millions : null;
+    }
 }

@@ -57,6 +57,8 @@ import raylab.course.Assignments;
 public final class GradeAllCommand implements Callable<Integer> {
     /** The marker of a finished grading: the submission's digest. */
     static final String DONE = ".raylab-graded";
+    /** Held by the grade-all that grades the student (released by the kernel when it ends, however). */
+    static final String LOCK = ".raylab-grade-all.lock";
 
     @Spec
     CommandSpec spec;
@@ -67,8 +69,18 @@ public final class GradeAllCommand implements Callable<Integer> {
     @Option(names = "--out", required = true, paramLabel = "DIR", description = "Where to write the results and the gradebook.")
     Path out;
 
-    @Option(names = "--jobs", paramLabel = "N", description = "Submissions graded at the same time (default: ${DEFAULT-VALUE}).")
-    int jobs = Math.max(1, Runtime.getRuntime().availableProcessors() / 2);
+    @Option(names = "--jobs", paramLabel = "N",
+            description = "Submissions graded at the same time (default: from the cores and the memory, ${DEFAULT-VALUE} here).")
+    int jobs = ClassScale.defaultJobs();
+
+    @Option(names = "--shard", paramLabel = "K/N", converter = ClassScale.ShardConverter.class,
+            description = {"Grade only shard K of N (the sorted submissions whose position is K modulo N), for a Slurm",
+                "job array or a Kubernetes Indexed Job; writes DIR/gradebook.shard-K-of-N.csv. Then --merge."})
+    ClassScale.Shard shard;
+
+    @Option(names = "--merge", description = {"Grade nothing: write DIR/gradebook.csv from every student's results",
+        "(after the shards); exit 1 if any submission is not graded."})
+    boolean merge;
 
     @Option(names = "--milestone", paramLabel = "M", description = "Grade only these milestones (repeatable).")
     List<String> milestones = new ArrayList<>();
@@ -102,6 +114,9 @@ public final class GradeAllCommand implements Callable<Integer> {
         if (jobs < 1) {
             throw UserError.badInput("--jobs must be at least 1, got " + jobs);
         }
+        if (merge && shard != null) {
+            throw UserError.badInput("--merge and --shard: the merge step comes after every shard, without --shard");
+        }
         Path r = root.toAbsolutePath().normalize();
         Assignments all;
         try {
@@ -126,14 +141,20 @@ public final class GradeAllCommand implements Callable<Integer> {
         if (entries.isEmpty()) {
             throw UserError.badInput(submissions + ": no submissions (folders or .zip files) in it");
         }
+        Map<String, Path> mine = shard == null ? entries : shard.of(entries);
         List<String> todo = new ArrayList<>();
-        for (Map.Entry<String, Path> e : entries.entrySet()) {
-            if (again || !done(o.resolve(e.getKey()), e.getValue())) {
+        for (Map.Entry<String, Path> e : mine.entrySet()) {
+            if (!merge && (again || !done(o.resolve(e.getKey()), e.getValue()))) {
                 todo.add(e.getKey());
             }
         }
-        log.println("raylab grade-all: " + entries.size() + " submission(s), " + (entries.size() - todo.size())
-                + " already graded, " + todo.size() + " to grade, " + jobs + " at a time");
+        if (merge) {
+            log.println("raylab grade-all --merge: " + entries.size() + " submission(s), nothing graded");
+        } else {
+            log.println("raylab grade-all: " + mine.size() + " submission(s)" + (shard == null ? "" : " in shard " + shard
+                    + " (of " + entries.size() + ")") + ", " + (mine.size() - todo.size()) + " already graded, " + todo.size()
+                    + " to grade, " + jobs + " at a time");
+        }
         log.flush();
         AtomicInteger failures = new AtomicInteger();
         if (!todo.isEmpty()) {
@@ -169,10 +190,10 @@ public final class GradeAllCommand implements Callable<Integer> {
             }
         }
         List<Row> rows = new ArrayList<>();
-        for (String s : entries.keySet()) {
+        for (String s : mine.keySet()) {
             rows.add(row(s, o.resolve(s), ids));
         }
-        Path csv = o.resolve("gradebook.csv");
+        Path csv = o.resolve(shard == null ? "gradebook.csv" : "gradebook.shard-" + shard.k() + "-of-" + shard.n() + ".csv");
         writeAtomically(csv, csv(rows, ids));
         long bad = rows.stream().filter(x -> !x.status().equals("graded")).count();
         spec.commandLine().getOut().println("wrote " + csv + ": " + rows.size() + " student(s)"
@@ -274,12 +295,40 @@ public final class GradeAllCommand implements Callable<Integer> {
         Path dir = o.resolve(student);
         try {
             Files.createDirectories(dir);
+        } catch (IOException e) {
+            failures.incrementAndGet();
+            report(log, progress, student, "NOT GRADED: " + e);
+            return;
+        }
+        // One grade-all at a time per student folder: a second one (a rerun while the first still
+        // runs, two shards given the same submissions) leaves it alone and says so.
+        try (ClassScale.Lock lock = ClassScale.Lock.tryTake(dir.resolve(LOCK))) {
+            if (lock == null) {
+                failures.incrementAndGet();
+                report(log, progress, student, "NOT GRADED: another grade-all is grading it (" + dir.resolve(LOCK) + " is locked)");
+                return;
+            }
+            gradeLocked(student, submission, dir, r, failures, log, progress);
+        } catch (IOException e) {
+            failures.incrementAndGet();
+            report(log, progress, student, "NOT GRADED: " + e);
+        }
+    }
+
+    private void gradeLocked(String student, Path submission, Path dir, Path r, AtomicInteger failures, PrintWriter log,
+            Progress progress) {
+        try {
             Files.deleteIfExists(dir.resolve(DONE));
+            // What an earlier (stopped) grading left is never taken for this one's result.
+            Files.deleteIfExists(dir.resolve("results.json"));
             String digest = digest(submission);
             List<String> cmd = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString()));
             cmd.addAll(raylab.grade.JvmOptions.GRADER);
             cmd.addAll(List.of("-cp", System.getProperty("java.class.path"), "raylab.cli.Main", "grade",
-                    submission.toAbsolutePath().toString(), "--out", dir.toString(), "--root", r.toString(), "--quiet"));
+                    submission.toAbsolutePath().toString(), "--out", dir.toString(), "--root", r.toString(), "--quiet",
+                    // It ends when this JVM does (its standard input, a pipe from here, closes), and
+                    // it holds a lock of its own on the folder while it writes there.
+                    "--die-with-parent", "--lock", dir.resolve(ClassScale.GRADING_LOCK).toString()));
             if (cache != null) {
                 cmd.addAll(List.of("--cache", cache.toAbsolutePath().toString()));
             }
@@ -289,8 +338,7 @@ public final class GradeAllCommand implements Callable<Integer> {
             cmd.addAll(gradeOptions);
             Path logFile = dir.resolve("grade.log");
             Process p = new ProcessBuilder(cmd).directory(r.toFile()).redirectErrorStream(true)
-                    .redirectOutput(logFile.toFile()).redirectInput(ProcessBuilder.Redirect.from(new java.io.File("/dev/null")))
-                    .start();
+                    .redirectOutput(logFile.toFile()).redirectInput(ProcessBuilder.Redirect.PIPE).start();
             if (!p.waitFor(timeout, TimeUnit.SECONDS)) {
                 p.descendants().forEach(ProcessHandle::destroyForcibly);
                 p.destroyForcibly();
@@ -301,6 +349,7 @@ public final class GradeAllCommand implements Callable<Integer> {
                 return;
             }
             int status = p.exitValue();
+            p.getOutputStream().close();
             if (Files.isRegularFile(dir.resolve("results.json")) && status != 1) {
                 // 0: graded; 2: the submission was unreadable or absent (results.json says so, score 0).
                 Files.deleteIfExists(dir.resolve("error.txt"));
@@ -361,7 +410,8 @@ public final class GradeAllCommand implements Callable<Integer> {
                 e.setValue(Math.round(e.getValue() * 100) / 100.0);
                 total += e.getValue();
             }
-            return new Row(student, per, Math.round(total * 100) / 100.0, "graded");
+            // A grading that failed on the grader's side decided nothing: its row says so.
+            return new Row(student, per, Math.round(total * 100) / 100.0, raylab.grade.GradingStatus.ofGradescope(n).label());
         } catch (IOException | RuntimeException e) {
             return new Row(student, Map.of(), 0, "failed");
         }

@@ -1,0 +1,71 @@
+package raylab.grade;
+
+import com.fasterxml.jackson.databind.JsonNode;
+
+import raylab.course.TestResult;
+
+/**
+ * Whether a grading decided the student's points, or failed on the grader's side: what each
+ * platform's output renders ("the autograder failed" on Gradescope, {@code gradable: false} on
+ * PrairieLearn, an infrastructure error on Classroom 50, grade-all's status column). A grading
+ * failed when something the student's code did not cause stopped it: the machine's load or
+ * memory (a student process killed from outside twice, a test's wall-clock guard fired while the
+ * student's code had used less than its time), or the trusted side. Such a test or scene scores
+ * 0 in the arithmetic, but no points were decided: the status says so, and the message is
+ * {@link #STUDENT_MESSAGE} followed by the cause.
+ */
+public enum GradingStatus {
+    /** Every part ran to a verdict on the student's code. */
+    GRADED("graded"),
+    /** A part failed for a reason that is not the student's code: the course staff must look. */
+    GRADING_FAILED("grading failed");
+
+    /** What the student reads in place of a verdict; the cause follows it in parentheses. */
+    public static final String STUDENT_MESSAGE = "The autograder failed here, not your code: no points were decided by"
+            + " this part. The course staff must look at it and grade it again.";
+
+    private final String label;
+
+    GradingStatus(String label) {
+        this.label = label;
+    }
+
+    /** The value of grade-all's status column. */
+    public String label() {
+        return label;
+    }
+
+    /** The message of a part whose grading failed, for {@code cause} (the trusted side's words, no student text). */
+    static String message(String cause) {
+        String c = cause.startsWith(TestResult.GRADING_FAILED) ? cause.substring(TestResult.GRADING_FAILED.length()) : cause;
+        return STUDENT_MESSAGE + " (" + c + ")";
+    }
+
+    /** The status of a report: failed if any test or scene says the grading failed. */
+    public static GradingStatus of(GradeReport report) {
+        if (report != null) {
+            for (GradeReport.Milestone m : report.milestones()) {
+                for (GradeReport.Test t : m.tests()) {
+                    if (t.message() != null && t.message().startsWith(STUDENT_MESSAGE)) {
+                        return GRADING_FAILED;
+                    }
+                }
+            }
+        }
+        return GRADED;
+    }
+
+    /** The status of a Gradescope results.json as {@code raylab grade} writes it (tests[].output). */
+    public static GradingStatus ofGradescope(JsonNode results) {
+        JsonNode tests = results == null ? null : results.get("tests");
+        if (tests != null) {
+            for (JsonNode t : tests) {
+                JsonNode o = t.get("output");
+                if (o != null && o.asText().contains(STUDENT_MESSAGE)) {
+                    return GRADING_FAILED;
+                }
+            }
+        }
+        return GRADED;
+    }
+}
