@@ -634,7 +634,7 @@ public final class StudentProcess implements AutoCloseable {
                         + " s of CPU time for one call and was stopped (an endless loop?)");
             }
             if (e instanceof Wire.ProtocolException) {
-                throw new StudentException("java.lang.Error", "the student process broke the protocol ("
+                throw new StudentException("java.lang.Error", "the student process sent a malformed frame ("
                         + e.getMessage() + ") and was stopped", List.of(), "");
             }
             throw new StudentException("java.lang.Error", "the student process ended during the call"
