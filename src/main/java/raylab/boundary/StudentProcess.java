@@ -245,6 +245,15 @@ public final class StudentProcess implements AutoCloseable {
         }
     }
 
+    /** Whether the first 64 KiB of {@code f} hold {@code text}. */
+    private static boolean mentions(Path f, String text) {
+        try (InputStream in = Files.newInputStream(f)) {
+            return new String(in.readNBytes(64 * 1024), StandardCharsets.UTF_8).contains(text);
+        } catch (IOException | RuntimeException e) {
+            return false;
+        }
+    }
+
     private static String firstLine(Path f) {
         try {
             String s = Files.readString(f);
@@ -624,7 +633,14 @@ public final class StudentProcess implements AutoCloseable {
                     Thread.currentThread().interrupt();
                 }
             }
+            // The JVM says which limit it hit on its standard output, which the channel sends to stderr.
+            boolean threadLimit = outOfMemory && mentions(stderr, "unable to create native thread");
             dead();
+            if (outOfMemory && threadLimit) {
+                throw new StudentException("java.lang.OutOfMemoryError", "your code reached the limit on threads"
+                        + " (the JVM could not start one more: unable to create native thread); start fewer threads,"
+                        + " or none", List.of(), "");
+            }
             if (outOfMemory) {
                 throw new StudentException("java.lang.OutOfMemoryError", "your code ran out of memory (look for"
                         + " something that grows with every call, such as a list kept in a static field)", List.of(), "");
@@ -1164,13 +1180,17 @@ public final class StudentProcess implements AutoCloseable {
         }
     }
 
-    /** The JVM's own command for a student process: java, the class path, StudentServer. */
+    /**
+     * The JVM's own command for a student process: java, the class path, StudentServer, behind
+     * {@link StudentServer#CHANNEL_WRAPPER} (the protocol on a channel of its own).
+     */
     public static List<String> javaCommand(List<Path> classPath, int heapMb, List<String> studentClasses) {
-        List<String> cmd = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
-                "-Xmx" + heapMb + "m", "-XX:+ExitOnOutOfMemoryError", "-Djava.awt.headless=true",
+        List<String> cmd = new ArrayList<>(StudentServer.CHANNEL_WRAPPER);
+        cmd.addAll(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
+                StudentServer.CHANNEL_JVM_OPTION, "-Xmx" + heapMb + "m", "-XX:+ExitOnOutOfMemoryError", "-Djava.awt.headless=true",
                 "-XX:+DisableAttachMechanism", "-XX:-UsePerfData", "-XX:TieredStopAtLevel=4", "-Xss4m",
                 "-cp", String.join(File.pathSeparator, classPath.stream().map(Path::toString).toList()),
-                "raylab.remote.StudentServer"));
+                "raylab.remote.StudentServer", "--channel"));
         for (String c : studentClasses) {
             cmd.add("--student");
             cmd.add(c);
