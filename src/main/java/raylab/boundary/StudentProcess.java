@@ -245,15 +245,6 @@ public final class StudentProcess implements AutoCloseable {
         }
     }
 
-    /** Whether the first 64 KiB of {@code f} hold {@code text}. */
-    private static boolean mentions(Path f, String text) {
-        try (InputStream in = Files.newInputStream(f)) {
-            return new String(in.readNBytes(64 * 1024), StandardCharsets.UTF_8).contains(text);
-        } catch (IOException | RuntimeException e) {
-            return false;
-        }
-    }
-
     private static String firstLine(Path f) {
         try {
             String s = Files.readString(f);
@@ -633,14 +624,7 @@ public final class StudentProcess implements AutoCloseable {
                     Thread.currentThread().interrupt();
                 }
             }
-            // The JVM says which limit it hit on its standard output, which the channel sends to stderr.
-            boolean threadLimit = outOfMemory && mentions(stderr, "unable to create native thread");
             dead();
-            if (outOfMemory && threadLimit) {
-                throw new StudentException("java.lang.OutOfMemoryError", "your code reached the limit on threads"
-                        + " (the JVM could not start one more: unable to create native thread); start fewer threads,"
-                        + " or none", List.of(), "");
-            }
             if (outOfMemory) {
                 throw new StudentException("java.lang.OutOfMemoryError", "your code ran out of memory (look for"
                         + " something that grows with every call, such as a list kept in a static field)", List.of(), "");
