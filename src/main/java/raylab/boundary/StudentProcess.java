@@ -817,7 +817,7 @@ public final class StudentProcess implements AutoCloseable {
                         + " s of CPU time for one call and was stopped (an endless loop?)");
             }
             if (e instanceof Wire.ProtocolException) {
-                throw new StudentException("java.lang.Error", "the student process broke the protocol ("
+                throw new StudentException("java.lang.Error", "the student process sent a malformed frame ("
                         + e.getMessage() + ") and was stopped", List.of(), "");
             }
             throw new StudentException("java.lang.Error", "the student process ended during the call"
@@ -1387,13 +1387,17 @@ public final class StudentProcess implements AutoCloseable {
         }
     }
 
-    /** The JVM's own command for a student process: java, the class path, StudentServer. */
+    /**
+     * The JVM's own command for a student process: java, the class path, StudentServer, behind
+     * {@link StudentServer#CHANNEL_WRAPPER} (the protocol on a channel of its own).
+     */
     public static List<String> javaCommand(List<Path> classPath, int heapMb, List<String> studentClasses) {
-        List<String> cmd = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
-                "-Xmx" + heapMb + "m", "-XX:+ExitOnOutOfMemoryError", "-Djava.awt.headless=true",
+        List<String> cmd = new ArrayList<>(StudentServer.CHANNEL_WRAPPER);
+        cmd.addAll(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
+                StudentServer.CHANNEL_JVM_OPTION, "-Xmx" + heapMb + "m", "-XX:+ExitOnOutOfMemoryError", "-Djava.awt.headless=true",
                 "-XX:+DisableAttachMechanism", "-XX:-UsePerfData", "-XX:TieredStopAtLevel=4", "-Xss4m",
                 "-cp", String.join(File.pathSeparator, classPath.stream().map(Path::toString).toList()),
-                "raylab.remote.StudentServer"));
+                "raylab.remote.StudentServer", "--channel"));
         for (String c : studentClasses) {
             cmd.add("--student");
             cmd.add(c);

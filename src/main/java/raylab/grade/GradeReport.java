@@ -2,10 +2,14 @@ package raylab.grade;
 
 import java.util.List;
 
+import raylab.scene.Display;
+
 /**
  * Everything one grading produced: per milestone its graded tests (unit tests, data cases and
  * scenes), and the files that were ignored. The report writers turn it into results.json,
- * junit.xml, report.html, PrairieLearn's results.json and the console table.
+ * junit.xml, report.html, PrairieLearn's results.json, the gradebook and the console table, so
+ * the text in it that can come from a student (failure messages, printed output, notes, file
+ * names) is made safe once, here: control characters escaped, lengths bounded ({@link Display#text}).
  *
  * @param milestones  graded milestones in course order
  * @param accepted    submitted files that were graded ("src/main/java/raylab/surface/Sphere.java <- Sphere.java")
@@ -15,6 +19,16 @@ import java.util.List;
  */
 public record GradeReport(List<Milestone> milestones, List<String> accepted, List<String> ignored,
         List<String> notes, double seconds) {
+    /** Every text that may hold a student's words made safe here, once for every output ({@link Display#text}). */
+    public GradeReport {
+        accepted = safe(accepted);
+        ignored = safe(ignored);
+        notes = safe(notes);
+    }
+
+    private static List<String> safe(List<String> texts) {
+        return texts.stream().map(Display::text).toList();
+    }
 
     public double score() {
         return round(milestones.stream().mapToDouble(Milestone::score).sum());
@@ -30,6 +44,10 @@ public record GradeReport(List<Milestone> milestones, List<String> accepted, Lis
 
     /** One milestone's result. */
     public record Milestone(String id, String title, List<String> notes, List<Test> tests) {
+        public Milestone {
+            notes = safe(notes);
+        }
+
         public double score() {
             return round(tests.stream().mapToDouble(Test::score).sum());
         }
@@ -70,7 +88,9 @@ public record GradeReport(List<Milestone> milestones, List<String> accepted, Lis
     public record Test(String milestone, String name, Kind kind, double maxScore, double score, boolean passed,
             String message, String output, String visibility, long millis, String file, Images images, String note) {
         public Test {
-            note = note == null ? "" : note;
+            message = Display.text(message);
+            output = Display.text(output);
+            note = note == null ? "" : Display.text(note);
         }
 
         /** Without a note. */

@@ -501,7 +501,11 @@ public final class Grader {
             }
         }
         List<String> cmd = new ArrayList<>(box.wrapper());
-        cmd.addAll(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(), "-Xmx" + heapMb + "m",
+        // The protocol on file descriptors of its own: the JVM's output and the student's raw
+        // writes to 1 and 2 go to the stderr file (StudentServer.CHANNEL_WRAPPER).
+        cmd.addAll(raylab.remote.StudentServer.CHANNEL_WRAPPER);
+        cmd.addAll(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
+                raylab.remote.StudentServer.CHANNEL_JVM_OPTION, "-Xmx" + heapMb + "m",
                 "-Xss4m", "-XX:+UseSerialGC", "-XX:+ExitOnOutOfMemoryError", "-Djava.awt.headless=true",
                 "-XX:+DisableAttachMechanism", "-XX:-UsePerfData", "--limit-modules", TestLauncher.CHILD_MODULES,
                 // C1 only: at 0.5 CPU, C2's compiler threads cost more than its faster code saves,
@@ -510,7 +514,7 @@ public final class Grader {
         cmd.addAll(JvmOptions.student(heapMb));
         cmd.addAll(extraJvmOptions("RAYLAB_STUDENT_JVM_OPTS"));
         cmd.addAll(List.of("-cp", String.join(java.io.File.pathSeparator, box.classPath()),
-                "raylab.remote.StudentServer"));
+                "raylab.remote.StudentServer", "--channel"));
         for (String c : students) {
             cmd.add("--student");
             cmd.add(c);

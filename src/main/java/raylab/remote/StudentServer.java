@@ -37,11 +37,16 @@ import raylab.surface.Surface;
 
 /**
  * The student process: serves the student's methods to the grader over {@link Wire} frames on
- * standard input and output. Its class path holds the student's classes of one milestone and the
+ * a channel of their own: with {@code --channel}, file descriptors {@value #CHANNEL_IN} (frames in)
+ * and {@value #CHANNEL_OUT} (frames out), which the command's {@link #CHANNEL_WRAPPER} moved there
+ * from standard input and output, sending the JVM's standard output (its own warnings at a thread
+ * or process limit, anything written to file descriptor 1) to standard error with the rest; without
+ * it, standard input and output. Its class path holds the student's classes of one milestone and the
  * public framework only; it computes results, never verdicts. What student code prints is
  * captured and sent back with each reply; a protocol error ends the process at once.
  * Arguments: {@code --student CLASS} (repeatable): the student's classes, whose stack frames an
- * exception report keeps.
+ * exception report keeps; {@code --channel}: frames on file descriptors 3 and 4 (the JVM needs
+ * {@link #CHANNEL_JVM_OPTION} to open them).
  */
 public final class StudentServer {
     private final DataInputStream in;
@@ -80,15 +85,32 @@ public final class StudentServer {
         this.studentClasses = studentClasses;
     }
 
+    /** The protocol's file descriptors with {@code --channel}: frames in, frames out. */
+    public static final int CHANNEL_IN = 3, CHANNEL_OUT = 4;
+    /**
+     * Put before {@code java} in a student process's command: moves standard input and output to
+     * file descriptors {@value #CHANNEL_IN} and {@value #CHANNEL_OUT}, gives the JVM /dev/null as
+     * input and its standard error as output. A shell's redirections, so it works behind every
+     * sandbox wrapper (they pass descriptors on).
+     */
+    public static final List<String> CHANNEL_WRAPPER = List.of("/bin/sh", "-c",
+            "exec 3<&0 4>&1 0</dev/null 1>&2 && exec \"$@\"", "raylab-channel");
+    /** The JVM option {@code --channel} needs: a FileDescriptor for a number is not public API. */
+    public static final String CHANNEL_JVM_OPTION = "--add-opens=java.base/java.io=ALL-UNNAMED";
+
     public static void main(String[] args) throws IOException {
         Set<String> students = new HashSet<>();
+        boolean channel = false;
         for (int i = 0; i < args.length; i++) {
             if (args[i].equals("--student") && i + 1 < args.length) {
                 students.add(args[++i]);
+            } else if (args[i].equals("--channel")) {
+                channel = true;
             }
         }
-        OutputStream proto = new BufferedOutputStream(new FileOutputStream(FileDescriptor.out), 1 << 16);
-        InputStream stdin = new FileInputStream(FileDescriptor.in);
+        OutputStream proto = new BufferedOutputStream(new FileOutputStream(channel ? descriptor(CHANNEL_OUT)
+                : FileDescriptor.out), 1 << 16);
+        InputStream stdin = new FileInputStream(channel ? descriptor(CHANNEL_IN) : FileDescriptor.in);
         String record = System.getProperty(RECORD);
         if (record != null && !record.isEmpty()) {
             stdin = new Recording(stdin, new FileOutputStream(record));
@@ -153,6 +175,22 @@ public final class StudentServer {
                 copy.flush();
             }
             return n;
+        }
+    }
+
+    /** An inherited file descriptor by its number. */
+    private static FileDescriptor descriptor(int n) throws IOException {
+        try {
+            FileDescriptor d = new FileDescriptor();
+            java.lang.reflect.Field f = FileDescriptor.class.getDeclaredField("fd");
+            f.setAccessible(true);
+            f.setInt(d, n);
+            if (!d.valid()) {
+                throw new IOException("file descriptor " + n + " is not valid");
+            }
+            return d;
+        } catch (ReflectiveOperationException | RuntimeException e) {
+            throw new IOException("cannot open the protocol channel (file descriptor " + n + "): " + e, e);
         }
     }
 

@@ -23,12 +23,24 @@ import raylab.ray.Ray;
  * frame it answers. Values are tagged ({@link #writeValue}); doubles travel as their raw bits, so
  * NaN payloads, −0 and the infinities arrive exactly. Nothing here is secret: the same class runs
  * on both sides.
+ *
+ * <p>The reader takes any bytes: a frame's length is checked against {@link #MAX_FRAME} and its
+ * bytes are read as they arrive (nothing is allocated for bytes that never come); every size inside
+ * a frame is checked against the bytes left in it before anything is allocated; values nest at most
+ * {@link #MAX_DEPTH} deep and a frame holds at most {@link #MAX_VALUES} of them. Whatever is wrong
+ * with a frame ends in a {@link ProtocolException} (fuzzed: {@code WireFuzzTest}).
  */
 public final class Wire {
     /** The first line the student process prints, before any frame. */
     public static final String HELLO = "raylab-student-server 1";
     /** The largest frame either side accepts (a frame over it is a protocol error). */
     public static final int MAX_FRAME = 64 << 20;
+    /** The deepest nesting of values (a list in a list, a light's colour, a record's surface...). */
+    public static final int MAX_DEPTH = 32;
+    /** The most values one frame may hold (with {@link #MAX_FRAME}, what reading a frame may allocate). */
+    public static final int MAX_VALUES = 1 << 21;
+    /** A frame's bytes are read in pieces of at most this, the buffer growing as they arrive. */
+    private static final int READ_PIECE = 1 << 16;
 
     // Frame types.
     /** Grader: {@code [int handle][String class][values...]} construct a student object. */
@@ -236,6 +248,10 @@ public final class Wire {
         final byte[] buf;
         int pos;
         final int end;
+        /** The values being read, one inside the other ({@link #readValue}). */
+        int depth;
+        /** The values read so far. */
+        int values;
 
         public In(byte[] buf, int pos, int end) {
             this.buf = buf;
@@ -244,8 +260,8 @@ public final class Wire {
         }
 
         private void need(int k) throws IOException {
-            if (k < 0 || pos + k > end) {
-                throw new ProtocolException("frame too short");
+            if (k < 0 || k > end - pos) {
+                throw new ProtocolException("frame too short (" + k + " bytes wanted, " + (end - pos) + " left)");
             }
         }
 
@@ -341,7 +357,7 @@ public final class Wire {
         }
     }
 
-    /** A protocol violation: the other side is broken or hostile. */
+    /** A protocol violation, a malformed frame: the other side is broken or hostile. */
     public static final class ProtocolException extends IOException {
         private static final long serialVersionUID = 1L;
 
@@ -369,15 +385,27 @@ public final class Wire {
         if (len < 5 || len > MAX_FRAME) {
             throw new ProtocolException("bad frame length " + len);
         }
-        byte type = in.readByte();
-        int conv = in.readInt();
-        byte[] b = new byte[len - 5];
         try {
-            in.readFully(b);
+            byte type = in.readByte();
+            int conv = in.readInt();
+            int size = len - 5;
+            // The declared length is a claim: the buffer grows with the bytes that actually come.
+            byte[] b = new byte[Math.min(size, READ_PIECE)];
+            int got = 0;
+            while (got < size) {
+                if (got == b.length) {
+                    b = Arrays.copyOf(b, (int) Math.min(size, 2L * b.length));
+                }
+                int k = in.read(b, got, b.length - got);
+                if (k < 0) {
+                    throw new EOFException();
+                }
+                got += k;
+            }
+            return new Frame(type, conv, new In(b, 0, size));
         } catch (EOFException e) {
-            throw new ProtocolException("frame cut short");
+            throw new ProtocolException("frame cut short (" + len + " bytes declared)");
         }
-        return new Frame(type, conv, new In(b, 0, b.length));
     }
 
     /**
@@ -535,8 +563,26 @@ public final class Wire {
         return got;
     }
 
-    /** Reads a tagged value. */
+    /**
+     * Reads a tagged value: at most {@link #MAX_DEPTH} deep (values inside it, through
+     * {@code refs} too) and at most {@link #MAX_VALUES} in one frame.
+     */
     public static Object readValue(In in, Refs refs) throws IOException {
+        if (++in.values > MAX_VALUES) {
+            throw new ProtocolException("more than " + MAX_VALUES + " values in one frame");
+        }
+        if (in.depth >= MAX_DEPTH) {
+            throw new ProtocolException("values nested more than " + MAX_DEPTH + " deep");
+        }
+        in.depth++;
+        try {
+            return readTagged(in, refs);
+        } finally {
+            in.depth--;
+        }
+    }
+
+    private static Object readTagged(In in, Refs refs) throws IOException {
         byte tag = in.readByte();
         switch (tag) {
             case NULL:
@@ -577,10 +623,12 @@ public final class Wire {
             }
             case LIST: {
                 int n = in.readInt();
-                if (n < 0 || n > in.end - in.pos) {
-                    throw new ProtocolException("bad list length " + n);
+                // Each element takes at least its tag's byte; the list grows as elements are read,
+                // so lists inside lists that all declare the frame's length allocate nothing ahead.
+                if (n < 0 || n > in.remaining()) {
+                    throw new ProtocolException("bad list length " + n + " (" + in.remaining() + " bytes left)");
                 }
-                List<Object> l = new ArrayList<>(n);
+                List<Object> l = new ArrayList<>(Math.min(n, 16));
                 for (int i = 0; i < n; i++) {
                     l.add(readValue(in, refs));
                 }

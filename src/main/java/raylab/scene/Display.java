@@ -42,6 +42,44 @@ public final class Display {
         return b.toString();
     }
 
+    /** The most characters {@link #text} keeps of one text. */
+    public static final int TEXT_MAX = 16 * 1024;
+
+    /**
+     * Text of several lines from untrusted code (a student's failure message or printed output),
+     * made safe for every output (JSON, HTML, CSV, a terminal): line breaks ({@code \n}, and
+     * {@code \r\n} as one) and tabs are kept, every other character {@link #escape} escapes is
+     * escaped the same way (NUL, ESC, a lone CR, bidirectional overrides...), and the text is cut
+     * after {@link #TEXT_MAX} characters (not inside a surrogate pair or an escape) with a note
+     * saying how much was left out. Null stays null.
+     */
+    public static String text(String s) {
+        if (s == null) {
+            return null;
+        }
+        StringBuilder b = new StringBuilder(Math.min(s.length(), TEXT_MAX) + 40);
+        int i = 0;
+        while (i < s.length() && b.length() < TEXT_MAX) {
+            char c = s.charAt(i);
+            if (c == '\r' && i + 1 < s.length() && s.charAt(i + 1) == '\n') {
+                i++; // \r\n: the \n is kept
+            } else if (c == '\n' || c == '\t' || !needsEscape(s, i)) {
+                b.append(c);
+                i++;
+                if (Character.isHighSurrogate(c) && i < s.length()) {
+                    b.append(s.charAt(i++)); // a pair, whole (needsEscape said it is one)
+                }
+            } else {
+                b.append(escape(String.valueOf(c)));
+                i++;
+            }
+        }
+        if (i < s.length()) {
+            b.append("\n(").append(s.length() - i).append(" more characters cut)");
+        }
+        return b.length() == s.length() && i == s.length() ? s : b.toString();
+    }
+
     /** A path as given, escaped as {@link #escape(String)} does. */
     public static String path(Path p) {
         return escape(String.valueOf(p));

@@ -42,4 +42,20 @@ public final class Echo {
         }
         return x > 0 ? millions : null;
     }
+
+    /** Bytes that look like a frame (a RETURN of 4 bytes to conversation 1) and a line of text. */
+    static final byte[] NOISE = {0, 0, 0, 9, 4, 0, 0, 0, 1, 0, 0, 0, 42, 'n', 'o', 'i', 's', 'e', '\n'};
+
+    /** Writes to file descriptors 1 and 2 directly, around System.out, and asks for a GC (logged). */
+    public static int raw(Object o) throws java.io.IOException {
+        java.io.FileOutputStream fd1 = new java.io.FileOutputStream(java.io.FileDescriptor.out);
+        java.io.FileOutputStream fd2 = new java.io.FileOutputStream(java.io.FileDescriptor.err);
+        fd1.write(NOISE);
+        fd1.flush();
+        System.out.println("said " + o);
+        fd2.write(NOISE);
+        fd2.flush();
+        System.gc();
+        return 8;
+    }
 }

@@ -8,6 +8,8 @@ import java.io.ByteArrayInputStream;
 import java.io.ByteArrayOutputStream;
 import java.io.DataInputStream;
 import java.io.IOException;
+import java.lang.management.ManagementFactory;
+import java.nio.ByteBuffer;
 import java.util.List;
 
 import org.junit.jupiter.api.Test;
@@ -103,5 +105,121 @@ class WireTest {
         assertThrows(Wire.ProtocolException.class, () -> Wire.readValue(unknownTag, null));
         Wire.In shortInt = new Wire.In(new byte[] {Wire.INT, 0, 1}, 0, 3);
         assertThrows(Wire.ProtocolException.class, () -> Wire.readValue(shortInt, null));
+    }
+
+    /** Bytes allocated by this thread while {@code r} runs (HotSpot's per-thread counter). */
+    static long allocatedBy(ThrowingRunnable r) throws Exception {
+        com.sun.management.ThreadMXBean mx = (com.sun.management.ThreadMXBean) ManagementFactory.getThreadMXBean();
+        long id = Thread.currentThread().getId();
+        long before = mx.getThreadAllocatedBytes(id);
+        r.run();
+        return mx.getThreadAllocatedBytes(id) - before;
+    }
+
+    interface ThrowingRunnable {
+        void run() throws Exception;
+    }
+
+    static Wire.In payload(byte[] b) {
+        return new Wire.In(b, 0, b.length);
+    }
+
+    /** {@code depth} lists, each holding the next, the innermost holding null. */
+    static byte[] nestedLists(int depth) {
+        ByteBuffer b = ByteBuffer.allocate(5 * depth + 1);
+        for (int i = 0; i < depth; i++) {
+            b.put(Wire.LIST).putInt(1);
+        }
+        b.put(Wire.NULL);
+        return b.array();
+    }
+
+    @Test
+    void nestingIsBoundedAndSaysSo() throws IOException {
+        // MAX_DEPTH values, one inside the other: MAX_DEPTH - 1 lists and the null in the innermost.
+        Object v = Wire.readValue(payload(nestedLists(Wire.MAX_DEPTH - 1)), null);
+        for (int i = 2; i < Wire.MAX_DEPTH; i++) {
+            v = ((List<?>) v).get(0);
+        }
+        assertEquals(java.util.Collections.singletonList(null), v, "the innermost of " + (Wire.MAX_DEPTH - 1) + " lists");
+        assertThrows(Wire.ProtocolException.class, () -> Wire.readValue(payload(nestedLists(Wire.MAX_DEPTH)), null));
+        Wire.ProtocolException e = assertThrows(Wire.ProtocolException.class,
+                () -> Wire.readValue(payload(nestedLists(1_500_000)), null));
+        assertEquals("values nested more than " + Wire.MAX_DEPTH + " deep", e.getMessage());
+        // A light's colour that is a light, a record's surface that is a record: nesting too.
+        ByteBuffer lights = ByteBuffer.allocate(2 * 100_000);
+        for (int i = 0; i < 100_000; i++) {
+            lights.put(Wire.LIGHT).put(Wire.NULL);
+        }
+        e = assertThrows(Wire.ProtocolException.class, () -> Wire.readValue(payload(lights.array()), null));
+        assertEquals("values nested more than " + Wire.MAX_DEPTH + " deep", e.getMessage());
+        ByteBuffer records = ByteBuffer.allocate(11 * 100_000);
+        for (int i = 0; i < 100_000; i++) {
+            records.put(Wire.RECORD).putDouble(1).put(Wire.NULL).put(Wire.NULL);
+        }
+        e = assertThrows(Wire.ProtocolException.class, () -> Wire.readValue(payload(records.array()), null));
+        assertEquals("values nested more than " + Wire.MAX_DEPTH + " deep", e.getMessage());
+    }
+
+    @Test
+    void listsThatDeclareTheWholeFrameAllocateOnlyWhatIsRead() throws Exception {
+        // 24 MB of lists inside lists, each declaring nearly all of it (the attack of issue 35):
+        // ahead-sized lists took 96 MB per level.
+        int size = 24 << 20;
+        ByteBuffer b = ByteBuffer.allocate(size);
+        for (int i = 0; i < 1000; i++) {
+            b.put(Wire.LIST).putInt(size - 2000);
+        }
+        byte[] bytes = b.array();
+        long allocated = allocatedBy(() -> assertThrows(Wire.ProtocolException.class,
+                () -> Wire.readValue(payload(bytes), null)));
+        assertTrue(allocated < (1 << 20), "reading 32 nested lists that each declare " + (size - 2000)
+                + " elements allocated " + allocated + " bytes; expected under 1 MiB");
+        Wire.ProtocolException e = assertThrows(Wire.ProtocolException.class,
+                () -> Wire.readValue(payload(new byte[] {Wire.LIST, 0, 0, 0, 9, Wire.NULL}), null));
+        assertEquals("bad list length 9 (1 bytes left)", e.getMessage());
+    }
+
+    @Test
+    void aFrameDeclaredLargeAllocatesWhatArrives() throws Exception {
+        ByteBuffer head = ByteBuffer.allocate(9 + 20).putInt(Wire.MAX_FRAME).put(Wire.RETURN).putInt(1);
+        byte[] bytes = head.array();
+        Wire.ProtocolException e = assertThrows(Wire.ProtocolException.class,
+                () -> Wire.readFrame(new DataInputStream(new ByteArrayInputStream(bytes))));
+        assertEquals("frame cut short (" + Wire.MAX_FRAME + " bytes declared)", e.getMessage());
+        long measured = allocatedBy(() -> assertThrows(Wire.ProtocolException.class,
+                () -> Wire.readFrame(new DataInputStream(new ByteArrayInputStream(bytes)))));
+        assertTrue(measured < (1 << 20), "a frame declaring " + Wire.MAX_FRAME + " bytes with 20 sent allocated "
+                + measured + " bytes; expected under 1 MiB");
+        // A frame that does arrive whole is read whole, in pieces.
+        Wire.Out o = new Wire.Out();
+        Wire.writeValue(o, "x".repeat(3 << 20), null);
+        ByteArrayOutputStream w = new ByteArrayOutputStream();
+        Wire.writeFrame(w, Wire.RETURN, 5, o);
+        Wire.Frame f = Wire.readFrame(new DataInputStream(new ByteArrayInputStream(w.toByteArray())));
+        assertEquals(3 << 20, ((String) Wire.readValue(f.in(), null)).length());
+    }
+
+    @Test
+    void aSizePastTheEndIsRefusedWithoutOverflow() {
+        byte[] b = ByteBuffer.allocate(12).put(Wire.INT).putInt(1).put(Wire.STRING).putInt(Integer.MAX_VALUE)
+                .put((byte) 'a').put((byte) 'b').array();
+        Wire.In in = payload(b);
+        Wire.ProtocolException e = assertThrows(Wire.ProtocolException.class, () -> {
+            Wire.readValue(in, null);
+            Wire.readValue(in, null);
+        });
+        assertEquals("frame too short (" + Integer.MAX_VALUE + " bytes wanted, 2 left)", e.getMessage());
+    }
+
+    @Test
+    void aFrameHoldsAtMostMaxValues() throws IOException {
+        byte[] nulls = new byte[Wire.MAX_VALUES + 1];
+        Wire.In in = payload(nulls);
+        for (int i = 0; i < Wire.MAX_VALUES; i++) {
+            Wire.readValue(in, null);
+        }
+        Wire.ProtocolException e = assertThrows(Wire.ProtocolException.class, () -> Wire.readValue(in, null));
+        assertEquals("more than " + Wire.MAX_VALUES + " values in one frame", e.getMessage());
     }
 }

@@ -48,7 +48,8 @@ public final class PrairieLearnBundle {
             #!/usr/bin/env bash
             # PrairieLearn external-grading entrypoint (written by raylab bundle prairielearn).
             #   grade.sh [MILESTONE]   grades /grade/student; writes /grade/results/results.json
-            # Without MILESTONE every milestone is graded. RAYLAB_GRADE_ROOT replaces /grade (for tests).
+            # Without MILESTONE every milestone is graded. For tests: RAYLAB_GRADE_ROOT replaces /grade,
+            # RAYLAB_SANDBOX forces a sandbox mode (grade --sandbox).
             G="${RAYLAB_GRADE_ROOT:-/grade}"
             SRC="$G/serverFilesCourse/raylab"
             mkdir -p "$G/results"
@@ -59,8 +60,13 @@ public final class PrairieLearnBundle {
               useradd -M -s /usr/sbin/nologin raylab-student >/dev/null 2>&1 || true
             fi
             # Student code must not read the grader, the hidden tests or the reference images.
-            chmod 700 "$SRC" "$G/tests" "$G/data" 2>/dev/null || true
+            # PrairieLearn copies serverFilesCourse/raylab to $G/serverFilesCourse/raylab and again to
+            # $G/shared/raylab, and its grader host extracts the job's tarball as root, which leaves $G
+            # 0755 (grader/README.md, "PrairieLearn's /grade"): drop the copy, lock $G and all in it.
+            rm -rf "$G/shared/raylab" 2>/dev/null || true
+            chmod 700 "$G" "$G"/* "$G"/.[!.]* "$SRC" 2>/dev/null || true
             args=()
+            if [ -n "${RAYLAB_SANDBOX:-}" ]; then args+=(--sandbox "$RAYLAB_SANDBOX"); fi
             if [ -n "${1:-}" ]; then args+=(--milestone "$1"); fi
             if [ -f "$SRC/due.txt" ]; then
               due="$(cat "$SRC/due.txt")"
