@@ -80,6 +80,17 @@ public final class PrairieLearn {
      * @param maxWidth 0: images as rendered; > 0: at most this many pixels wide; -1: no images
      */
     static Map<String, Object> tree(GradeReport r, boolean afterDueDate, int maxWidth) throws IOException {
+        if (r.failed()) {
+            // PrairieLearn's way to say that no grade was decided: not gradable (no attempt charged,
+            // no score recorded), with the message; the cause is in the grader's log for the staff.
+            Map<String, Object> root = new LinkedHashMap<>();
+            root.put("gradable", false);
+            root.put("score", 0.0);
+            root.put("message", GradeReport.FAILED_FOR_STUDENTS);
+            root.put("output", "");
+            root.put("tests", List.of());
+            return root;
+        }
         double score = 0;
         double max = 0;
         int hiddenLeftOut = 0;
@@ -135,7 +146,7 @@ public final class PrairieLearn {
             msg.append("\nThis submission does not compile: it was not counted as an attempt. Fix the error and submit again.");
         }
         if (r.milestones().isEmpty()) {
-            r.notes().forEach(n -> msg.append('\n').append(n));
+            r.studentNotes().forEach(n -> msg.append('\n').append(n));
         }
         root.put("message", msg.toString());
         StringBuilder out = new StringBuilder();
