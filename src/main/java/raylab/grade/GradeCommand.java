@@ -155,6 +155,11 @@ public final class GradeCommand implements Callable<Integer> {
                 status = 2;
             } else {
                 report = new Grader(o, log).seed(seed).grade(submission);
+                if (report.failed()) {
+                    // A milestone the course's setup cannot grade: no grade was decided.
+                    System.err.println("raylab: grading failed: " + oneLine(report.failure()));
+                    status = 1;
+                }
             }
         } catch (Throwable e) {
             report = null;

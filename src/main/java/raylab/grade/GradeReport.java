@@ -33,13 +33,22 @@ public record GradeReport(List<Milestone> milestones, List<String> accepted, Lis
 
     /** Whether the grading could not run at all: no points were decided (not a score of 0). */
     public boolean failed() {
-        return milestones.isEmpty() && notes.stream().anyMatch(n -> n.startsWith(FAILED));
+        return failure() != null;
     }
 
-    /** Why the grading failed, for the course staff (null when it did not fail). */
+    /**
+     * Why the grading failed, for the course staff (null when it did not fail): the grading
+     * could not run, or a milestone's setup could not grade it (the other milestones are
+     * graded, in the instructors' report, but no grade was decided).
+     */
     public String failure() {
-        return notes.stream().filter(n -> n.startsWith(FAILED)).findFirst()
-                .map(n -> n.substring(FAILED.length())).orElse(null);
+        List<String> causes = new java.util.ArrayList<>();
+        notes.stream().filter(n -> n.startsWith(FAILED)).forEach(n -> causes.add(n.substring(FAILED.length())));
+        for (Milestone m : milestones) {
+            m.notes().stream().filter(n -> n.startsWith(FAILED))
+                    .forEach(n -> causes.add(m.id() + ": " + n.substring(FAILED.length())));
+        }
+        return causes.isEmpty() ? null : String.join("; ", causes);
     }
 
     /**

@@ -290,6 +290,11 @@ public final class Grader {
 
     private GradeReport.Milestone gradeMilestone(Assignment a, Submission sub, GraderSetup setup, Path work,
             Path scenesCopy, Sandbox sandbox, List<String> ignored) throws IOException {
+        if (setup.broken.containsKey(a.id())) {
+            // The course's setup cannot grade this milestone: it fails, the others are graded.
+            return new GradeReport.Milestone(a.id(), a.title(), List.of(GradeReport.FAILED + setup.broken.get(a.id())),
+                    List.of());
+        }
         Path mdir = work.resolve(a.id());
         Files.createDirectories(mdir);
         List<String> notes = new ArrayList<>();

@@ -107,13 +107,17 @@ final class HtmlReport {
             b.append("<h1 style=\"font-size:140%;color:#b00020\">The autograder failed: no points were decided</h1>\n");
             if (students) {
                 b.append("<p>").append(esc(GradeReport.FAILED_FOR_STUDENTS)).append("</p>\n");
-            } else {
-                b.append("<p>Fix the course's setup and grade this submission again. Cause:</p>\n");
+                return b.append("</div>\n").toString();
+            }
+            b.append("<p>Fix the course's setup and grade this submission again. Cause:</p>\n<pre style=\"")
+                    .append(PRE).append("\">").append(esc(r.failure())).append("</pre>\n");
+            if (r.milestones().isEmpty()) {
                 for (String n : r.notes()) {
                     b.append("<pre style=\"").append(PRE).append("\">").append(esc(n)).append("</pre>\n");
                 }
+                return b.append("</div>\n").toString();
             }
-            return b.append("</div>\n").toString();
+            // The milestones that were graded, below: for the instructors only (no grade was decided).
         }
         if (students) {
             // Before the due date Gradescope shows this page to students at once: only what they
