@@ -134,8 +134,9 @@ class GraderAttackTest {
             String m = t.get("message").asText() + t.get("output").asText();
             assertFalse(m.contains("Hidden") || m.contains("SphereCasesTest"),
                     "PrairieLearn results show hidden details: " + m);
-            assertTrue(visible.contains(t.get("name").asText()), "PrairieLearn shows a test that is not visible: "
-                    + t.get("name").asText() + " (visible: " + visible + ")");
+            assertTrue(visible.contains(t.get("name").asText())
+                    || t.get("name").asText().endsWith(": " + raylab.grade.platform.PrairieLearn.HIDDEN_ROW),
+                    "PrairieLearn shows a test that is not visible: " + t.get("name").asText() + " (visible: " + visible + ")");
         }
     }
 
