@@ -117,6 +117,24 @@ class CourseCheckTest {
         assertGradingFails(root, dir.resolve("cache-failing"), "wrongExpectation");
     }
 
+    @Test
+    void aGradedSceneWhoseVariantsLoseItsPointStopsTheSelfCheck() throws Exception {
+        Path root = course("variant");
+        Path a = root.resolve("assignments/01-sphere/assignment.json");
+        ObjectNode n = (ObjectNode) JSON.readTree(a.toFile());
+        ObjectNode v = (ObjectNode) n.get("scenes").get(1).get("variant");
+        v.putObject("camera").put("yaw", 45).put("pitch", 30).put("distance", 0.5).put("fov", 15);
+        v.put("coverage", 1.1);
+        Files.writeString(a, n.toString());
+        Run r = raylab("self-check", "--root", root.toString(), "--cache", dir.resolve("cache-variant").toString(),
+                "--milestone", "sphere", "--quiet");
+        assertEquals(1, r.status(), r.err());
+        List<String> lines = problemLines(r.err());
+        assertEquals(1, lines.size(), "one clear line: " + r.err());
+        assertTrue(lines.get(0).contains("scenes/spheres.json: graded as published: no variant of 8 kept its point")
+                && lines.get(0).contains("narrow its"), lines.get(0));
+    }
+
     /** Graded anyway: exit 1, Gradescope's and PrairieLearn's files say the grading failed, the cause only for staff. */
     private void assertGradingFails(Path root, Path cache, String cause) throws IOException {
         Path sub = Files.createDirectories(dir.resolve("sub-" + cache.getFileName()));
