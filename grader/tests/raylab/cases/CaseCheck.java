@@ -17,8 +17,8 @@ import raylab.surface.Surface;
 import raylab.surface.Triangle;
 
 /**
- * Runs one data-driven case (a JSON object from an assignment's cases/ folder, format in
- * grader/README.md): builds the surface and the ray, intersects, and compares with the expected
+ * Runs one data-driven case (a JSON object from an assignment's cases/ folder, format in the
+ * grader's README): builds the surface and the ray, intersects, and compares with the expected
  * hit or miss. The grader generates one JUnit test per case that calls {@link #check}.
  */
 public final class CaseCheck {

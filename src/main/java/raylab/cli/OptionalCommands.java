@@ -9,6 +9,7 @@ import picocli.CommandLine;
 final class OptionalCommands {
     static final String[] NAMES = {"raylab.course.release.ReleaseCommand", "raylab.course.release.AssignmentCommand", "raylab.grade.GradeCommand",
         "raylab.grade.ReferenceCommand", "raylab.grade.VariantCommand", "raylab.grade.BundleCommand",
+        "raylab.grade.SelfCheckCommand",
         "raylab.grade.platform.GradeAllCommand", "raylab.study.StudyCommand"};
 
     private OptionalCommands() {

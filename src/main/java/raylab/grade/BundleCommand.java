@@ -78,23 +78,54 @@ public final class BundleCommand implements Callable<Integer> {
 
     static final String SETUP = """
             #!/usr/bin/env bash
-            # Gradescope setup: runs once when the autograder image is built.
+            # Gradescope setup: runs once when the autograder image is built. Any failure stops the
+            # build (set -e), so a broken course never becomes a "successful" image.
             set -euo pipefail
             AG="${AUTOGRADER_ROOT:-/autograder}"
-            if ! command -v javac >/dev/null 2>&1; then
-              apt-get update -q && DEBIAN_FRONTEND=noninteractive apt-get install -y -q openjdk-17-jdk-headless
+            # A JDK 17 or newer must be the one the grader uses, whatever the base image has (the
+            # JDK 8 or 11 of an older image stays installed but is not used).
+            java_major() { # the Java feature version of the java binary $1 (1.8 -> 8), or 0
+              "$1" -XshowSettings:properties -version 2>&1 | sed -n 's/^ *java.specification.version = //p' \\
+                | sed 's/^1\\.//' | cut -d. -f1 | grep -E '^[0-9]+$' || echo 0
+            }
+            jdk_ok() { # $1: a JDK's bin folder
+              [ -x "$1/java" ] && [ -x "$1/javac" ] && [ "$(java_major "$1/java")" -ge 17 ]
+            }
+            JDK_BIN=""
+            for d in "$(dirname "$(readlink -f "$(command -v javac 2>/dev/null || echo /nonexistent)")")" \\
+                     /usr/lib/jvm/*/bin; do
+              if jdk_ok "$d"; then JDK_BIN="$d"; break; fi
+            done
+            if [ -z "$JDK_BIN" ]; then
+              apt-get update -q
+              DEBIAN_FRONTEND=noninteractive apt-get install -y -q openjdk-17-jdk-headless \\
+                || { echo "raylab setup: no JDK 17 package for this image; choose Gradescope's Ubuntu 22.04 base image" >&2; exit 1; }
+              for d in /usr/lib/jvm/java-17-openjdk-*/bin; do
+                if jdk_ok "$d"; then JDK_BIN="$d"; break; fi
+              done
             fi
+            if [ -z "$JDK_BIN" ]; then
+              echo "raylab setup: no JDK 17 or newer found after installing one" >&2
+              exit 1
+            fi
+            # run_autograder reads the JDK from here (not from PATH, where an older java may come first).
+            echo "$JDK_BIN/java" > "$AG/source/java-path"
+            echo "raylab setup: using $JDK_BIN/java ($("$JDK_BIN/java" -version 2>&1 | head -1))"
+            if [ -n "${RAYLAB_SETUP_JDK_ONLY:-}" ]; then exit 0; fi # for tests: the JDK's choice alone
             # The unprivileged user that runs student code (the grader switches to it when root).
             if [ "$(id -u)" = 0 ] && ! id raylab-student >/dev/null 2>&1; then
-              useradd -M -s /usr/sbin/nologin raylab-student || true
+              useradd -M -s /usr/sbin/nologin raylab-student
             fi
             # Students' code must not read the grader's sources, jar or reference images.
-            chmod 700 "$AG/source" || true
-            # Build the grader's classes and test list once, into the image. The grader keeps each build
-            # folder private (700); student code only sees links to the files it needs, in its own box.
-            mkdir -p "$AG/cache" "$AG/source/warmup-submission"
-            (cd "$AG/source" && java JVM_OPTIONS -jar raylab.jar grade warmup-submission --out /tmp/raylab-warmup \\
-                --root "$AG/source" --cache "$AG/cache" --quiet) || true
+            chmod 700 "$AG/source"
+            # The course checks itself with the files of this zip: the grader's tests compile and pass
+            # on the reference, points add up, every graded scene's variants keep their point, and the
+            # reference solution graded as a submission scores full marks; one line per problem, and the
+            # build fails. It also builds the grader's classes and test list once, into the image (each
+            # build folder private, 700; student code only sees links to the files it needs).
+            mkdir -p "$AG/cache"
+            (cd "$AG/source" && "$JDK_BIN/java" JVM_OPTIONS -jar raylab.jar self-check --root "$AG/source" \\
+                --cache "$AG/cache" --quiet)
             chmod 755 "$AG/cache"
             """.replace("JVM_OPTIONS", JvmOptions.graderLine());
 
@@ -104,14 +135,27 @@ public final class BundleCommand implements Callable<Integer> {
             AG="${AUTOGRADER_ROOT:-/autograder}"
             mkdir -p "$AG/results"
             cd "$AG/source" || exit 1
-            java JVM_OPTIONS -jar raylab.jar grade "$AG/submission" --out "$AG/results" --root "$AG/source" \\
-                --cache "$AG/cache" --quiet
-            if [ ! -s "$AG/results/results.json" ]; then
-              echo '{"score": 0, "output": "The autograder could not run. Please tell the course staff."}' \\
-                > "$AG/results/results.json"
+            JAVA="$(cat "$AG/source/java-path" 2>/dev/null || echo java)"
+            "$JAVA" JVM_OPTIONS -jar raylab.jar grade "$AG/submission" --out "$AG/results" --root "$AG/source" \\
+                --cache "$AG/cache" --quiet 2>&1
+            status=$?
+            if [ "$status" -ne 0 ] || [ ! -s "$AG/results/results.json" ]; then
+              # The grading failed: no points were decided. Without results.json Gradescope tells the
+              # student "The autograder failed to execute correctly" and records no score (Gradescope's
+              # autograder documentation, Troubleshooting); the cause is in this output, which only
+              # instructors see.
+              echo "raylab: the grading failed (exit status $status): no score was recorded; the cause is above"
+              if [ -f "$AG/results/results.json" ]; then
+                mv "$AG/results/results.json" "$AG/grading-failed-results.json"
+              fi
+              exit 1
             fi
             exit 0
             """.replace("JVM_OPTIONS", JvmOptions.graderLine());
+
+    @Option(names = "--no-self-check", description = {"Skip the course's self-check (raylab self-check) on the bundle's files:",
+        "only to look at a bundle, never for one that students will use."})
+    boolean noSelfCheck;
 
     @Override
     public Integer call() throws IOException {
@@ -121,6 +165,9 @@ public final class BundleCommand implements Callable<Integer> {
         Path r = root.toAbsolutePath().normalize();
         if (target.equals("classroom50")) {
             Assignments all = Assignments.load(r);
+            if (!noSelfCheck) {
+                selfCheck(r, graderFiles(r, all));
+            }
             raylab.grade.platform.Classroom50Bundle.write(all, assignment, javaVersion, out);
             spec.commandLine().getOut().println("wrote " + out + ": copy autograders/" + assignment + "/ into CLASSROOM/autograders/ of the"
                     + " classroom50 repository and add assignment.json's fields to the assignment (see its README.md)");
@@ -136,6 +183,9 @@ public final class BundleCommand implements Callable<Integer> {
         }
         Assignments all = Assignments.load(r);
         List<Path> files = graderFiles(r, all);
+        if (!noSelfCheck) {
+            selfCheck(r, files);
+        }
         if (target.equals("prairielearn")) {
             if (!List.of("per-milestone", "whole").contains(questions)) {
                 throw UserError.badInput("--questions: per-milestone or whole, got '" + questions + "'");
@@ -173,6 +223,34 @@ public final class BundleCommand implements Callable<Integer> {
         spec.commandLine().getOut().println("wrote " + out + " (" + (Files.size(out) / 1024) + " KiB): upload it as the "
                 + "Gradescope autograder (Ubuntu base image)");
         return 0;
+    }
+
+    /**
+     * The course's self-check ({@link CourseCheck}) on a copy of exactly the files the bundle
+     * holds: one line per problem on standard error, and a refusal (exit status 1) when there is any.
+     */
+    private void selfCheck(Path r, List<Path> files) throws IOException {
+        Path staged = Files.createTempDirectory("raylab-bundle-check");
+        try {
+            for (Path f : files) {
+                Path t = staged.resolve(r.relativize(f).toString());
+                Files.createDirectories(t.getParent());
+                Files.copy(f, t);
+            }
+            Grader.Options o = Grader.Options.defaults(staged);
+            o = new Grader.Options(staged, o.milestones(), o.limits(), o.sceneLimit(), o.sceneHeapMb(),
+                    staged.resolve("target/grader-cache"), o.sandboxUser(), o.parallel(), o.sandboxMode());
+            java.io.PrintWriter err = spec.commandLine().getErr();
+            err.println("raylab: checking the course with the bundle's own files (raylab self-check; takes a few minutes)");
+            err.flush();
+            List<String> problems = CourseCheck.problems(staged, List.of(), o, s -> { });
+            if (SelfCheckCommand.report(problems, err) != 0) {
+                throw new UserError(problems.size() + " course problem" + (problems.size() == 1 ? "" : "s")
+                        + " (above): nothing was written to " + out, 1);
+            }
+        } finally {
+            GraderSetup.deleteTree(staged);
+        }
     }
 
     /** What grading reads besides the jar: assignments, the grader's tests, scenes, helpers, visible tests, framework sources. */

@@ -175,11 +175,17 @@ public final class GradeCommand implements Callable<Integer> {
             Files.createDirectories(out);
             before = list(out);
             if (!Files.exists(submission, java.nio.file.LinkOption.NOFOLLOW_LINKS)) {
-                report = Grader.failed(submission + ": no such file or directory (nothing was submitted)", (System.nanoTime() - t0) / 1e9);
+                report = Grader.nothingSubmitted(submission + ": no such file or directory (nothing was submitted)",
+                        (System.nanoTime() - t0) / 1e9);
                 System.err.println("raylab: " + oneLine(submission + ": no such file or directory"));
                 status = 2;
             } else {
                 report = new Grader(o, log).seed(seed).grade(submission);
+                if (report.failed()) {
+                    // A milestone the course's setup cannot grade: no grade was decided.
+                    System.err.println("raylab: grading failed: " + oneLine(report.failure()));
+                    status = 1;
+                }
             }
         } catch (Throwable e) {
             report = null;
@@ -211,7 +217,8 @@ public final class GradeCommand implements Callable<Integer> {
                 stdout.println("Results: " + out.resolve("results.json") + ", report: " + out.resolve("report.html"));
             }
         } catch (Throwable e) {
-            writeMinimal(out, report == null ? "the grader failed" : String.join("; ", report.notes()), e);
+            writeMinimal(out);
+            System.err.println("raylab: grading failed: " + (report == null ? "the grader failed" : String.join("; ", report.notes())));
             System.err.println("raylab: writing the reports failed: " + describe(e));
             return status == 0 ? 1 : status;
         }
@@ -244,10 +251,14 @@ public final class GradeCommand implements Callable<Integer> {
         return b.toString();
     }
 
-    /** A results.json built without any library, for when even the reports could not be written. */
-    private static void writeMinimal(Path out, String why, Throwable e) {
+    /**
+     * A results.json built without any library, for when even the reports could not be written:
+     * a failed grading ({@link GradeReport#FAILED_FOR_STUDENTS}, no score); the cause goes to
+     * standard error, for the course staff.
+     */
+    private static void writeMinimal(Path out) {
         StringBuilder b = new StringBuilder();
-        String text = "The autograder failed: " + why + " (" + e.getClass().getSimpleName() + "). Please tell the course staff.";
+        String text = GradeReport.FAILED_FOR_STUDENTS;
         for (char c : text.toCharArray()) {
             if (c == '"' || c == '\\') {
                 b.append('\\').append(c);
@@ -259,8 +270,8 @@ public final class GradeCommand implements Callable<Integer> {
         }
         try {
             Files.createDirectories(out);
-            Files.writeString(out.resolve("results.json"), "{\"score\": 0, \"execution_time\": 0, \"output\": \"" + b
-                    + "\", \"tests\": []}\n", StandardCharsets.UTF_8);
+            Files.writeString(out.resolve("results.json"), "{\"execution_time\": 0, \"output\": \"" + b
+                    + "\", \"extra_data\": {\"grading_failed\": true}, \"tests\": []}\n", StandardCharsets.UTF_8);
         } catch (Throwable ignored) {
             // nothing more can be done
         }

@@ -30,8 +30,63 @@ public record GradeReport(List<Milestone> milestones, List<String> accepted, Lis
         return texts.stream().map(Display::text).toList();
     }
 
+    /** The note that starts a report of a grading that could not run ({@link Grader#failed}). */
+    public static final String FAILED = "grading failed: ";
+
+    /**
+     * What a student reads, on every platform, when the grading failed: no cause (it may name the
+     * instructor's paths or hidden tests), no score.
+     */
+    public static final String FAILED_FOR_STUDENTS = "The autograder failed before it could grade this submission,"
+            + " so no points were decided. This is a problem of the course's autograder, not of your code: please"
+            + " tell the course staff, who have the cause in their report and must fix the autograder.";
+
     public double score() {
         return round(milestones.stream().mapToDouble(Milestone::score).sum());
+    }
+
+    /** Whether the grading could not run at all: no points were decided (not a score of 0). */
+    public boolean failed() {
+        return failure() != null;
+    }
+
+    /**
+     * Why the grading failed, for the course staff (null when it did not fail): the grading
+     * could not run, or a milestone's setup could not grade it (the other milestones are
+     * graded, in the instructors' report, but no grade was decided).
+     */
+    public String failure() {
+        List<String> causes = new java.util.ArrayList<>();
+        notes.stream().filter(n -> n.startsWith(FAILED)).forEach(n -> causes.add(n.substring(FAILED.length())));
+        for (Milestone m : milestones) {
+            m.notes().stream().filter(n -> n.startsWith(FAILED))
+                    .forEach(n -> causes.add(m.id() + ": " + n.substring(FAILED.length())));
+        }
+        return causes.isEmpty() ? null : String.join("; ", causes);
+    }
+
+    /**
+     * Whether a general note is for the course staff only: the sandbox mode, the grader's setup,
+     * the grading seed of the scene variants, a variant drawn again or not drawn (which asks the
+     * instructor to narrow its bounds), and the cause of a failed grading. Students see the other
+     * notes: what their own submission caused.
+     */
+    public static boolean staffOnly(String note) {
+        return note.startsWith("sandbox") || note.startsWith("grader setup") || note.startsWith("grader:")
+                || note.startsWith(SEED_NOTE) || note.contains(PUBLISHED_NOTE) || note.contains(REDRAWN_NOTE)
+                || note.startsWith(FAILED);
+    }
+
+    /** The start of the note that names the grading seed. */
+    public static final String SEED_NOTE = "scene variants: seed ";
+    /** In the note of a scene graded as published because no variant kept its point. */
+    public static final String PUBLISHED_NOTE = ": graded as published: ";
+    /** In the note of a scene whose variant was drawn more than once. */
+    public static final String REDRAWN_NOTE = ": variant drawn ";
+
+    /** The general notes a student may read ({@link #staffOnly}). */
+    public List<String> studentNotes() {
+        return notes.stream().filter(n -> !staffOnly(n)).toList();
     }
 
     public double maxScore() {

@@ -117,11 +117,11 @@ public final class GradedScenes {
                     String text = JSON.writerWithDefaultPrettyPrinter().writeValueAsString(v) + "\n";
                     byte[] ref = render ? renderReference(text, file) : null;
                     return new Graded(sc, true, seed, k, text, ref,
-                            k == 0 ? "" : sc.scene() + ": variant drawn " + (k + 1) + " times to keep its point");
+                            k == 0 ? "" : sc.scene() + GradeReport.REDRAWN_NOTE + (k + 1) + " times to keep its point");
                 }
             }
             return new Graded(sc, false, 0, 0, JSON.writeValueAsString(published), null, sc.scene()
-                    + ": graded as published: no variant of " + ATTEMPTS + " kept its point (last: " + last.get(0)
+                    + GradeReport.PUBLISHED_NOTE + "no variant of " + ATTEMPTS + " kept its point (last: " + last.get(0)
                     + "); narrow its \"variant\" bounds");
         } catch (SceneException e) {
             throw new IOException(sc.scene() + ": a variant does not load: " + e.getMessage());

@@ -172,7 +172,7 @@ public final class Grader {
         // Variants of the graded scenes. Behind the boundary their references come from the
         // grader's render (the first round of each band traces with the reference only), else
         // they are rendered here by the reference solution.
-        notes.add("scene variants: seed " + seed + " (grade with --seed " + seed + " to grade the same variants again)");
+        notes.add(GradeReport.SEED_NOTE + seed + " (grade with --seed " + seed + " to grade the same variants again)");
         long v0 = System.nanoTime();
         for (GradedScenes.Graded g : GradedScenes.forGrading(root, selected, seed, !processBoundary())) {
             graded.put(g.scene().scene(), g);
@@ -275,13 +275,26 @@ public final class Grader {
         }
     }
 
-    /** A report for a grading that could not run at all: score 0 and the reason. */
+    /** A report for a submission that does not exist: nothing to grade, score 0, and why. */
+    public static GradeReport nothingSubmitted(String why, double seconds) {
+        return new GradeReport(List.of(), List.of(), List.of(), List.of("nothing was graded: " + why), seconds);
+    }
+
+    /**
+     * A report for a grading that could not run at all: no points decided ({@link GradeReport#failed}),
+     * the reason for the course staff only.
+     */
     public static GradeReport failed(String why, double seconds) {
-        return new GradeReport(List.of(), List.of(), List.of(), List.of("grading failed: " + why), seconds);
+        return new GradeReport(List.of(), List.of(), List.of(), List.of(GradeReport.FAILED + why), seconds);
     }
 
     private GradeReport.Milestone gradeMilestone(Assignment a, Submission sub, GraderSetup setup, Path work,
             Path scenesCopy, Sandbox sandbox, List<String> ignored) throws IOException {
+        if (setup.broken.containsKey(a.id())) {
+            // The course's setup cannot grade this milestone: it fails, the others are graded.
+            return new GradeReport.Milestone(a.id(), a.title(), List.of(GradeReport.FAILED + setup.broken.get(a.id())),
+                    List.of());
+        }
         Path mdir = work.resolve(a.id());
         Files.createDirectories(mdir);
         List<String> notes = new ArrayList<>();

@@ -77,6 +77,11 @@ final class GraderSetup {
     /** Per milestone: its data cases. */
     final Map<String, List<DataCases.Case>> cases = new LinkedHashMap<>();
     final List<String> notes = new ArrayList<>();
+    /**
+     * Milestones the course's setup cannot grade, with the cause (a test that fails on the
+     * reference solution): their gradings fail ({@link GradeReport#failed}); never a test left out.
+     */
+    final Map<String, String> broken = new java.util.LinkedHashMap<>();
 
     private GraderSetup(Path dir, List<Path> libraries) {
         this.dir = dir;
@@ -389,9 +394,11 @@ final class GraderSetup {
             for (TestResult r : list) {
                 if (r.status().passed()) {
                     good.add(r);
-                } else {
-                    notes.add("grader setup: " + r.className() + "." + r.method() + " fails on the reference solution ("
-                            + firstLine(r.message()) + "); it is not graded");
+                } else if (!broken.containsKey(a.id())) {
+                    // Left out, the test's points would go to the others or vanish: a wrong grade.
+                    broken.put(a.id(), "the test " + r.className() + "." + r.method() + " of milestone " + a.id()
+                            + " fails on the reference solution (" + firstLine(r.message())
+                            + "): fix the test or the reference, then grade again");
                 }
             }
             expected.put(a.id(), good);

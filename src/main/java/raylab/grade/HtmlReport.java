@@ -101,6 +101,24 @@ final class HtmlReport {
         StringBuilder b = new StringBuilder();
         b.append("<div style=\"font-family:sans-serif;max-width:100%;overflow-wrap:anywhere\">\n");
         List<GradeReport.Test> all = r.milestones().stream().flatMap(m -> m.tests().stream()).toList();
+        if (r.failed()) {
+            // Not a score of 0 and never "nothing to fix": no points were decided. The cause (which
+            // may name the instructor's paths or hidden tests) is on the instructors' page only.
+            b.append("<h1 style=\"font-size:140%;color:#b00020\">The autograder failed: no points were decided</h1>\n");
+            if (students) {
+                b.append("<p>").append(esc(GradeReport.FAILED_FOR_STUDENTS)).append("</p>\n");
+                return b.append("</div>\n").toString();
+            }
+            b.append("<p>Fix the course's setup and grade this submission again. Cause:</p>\n<pre style=\"")
+                    .append(PRE).append("\">").append(esc(r.failure())).append("</pre>\n");
+            if (r.milestones().isEmpty()) {
+                for (String n : r.notes()) {
+                    b.append("<pre style=\"").append(PRE).append("\">").append(esc(n)).append("</pre>\n");
+                }
+                return b.append("</div>\n").toString();
+            }
+            // The milestones that were graded, below: for the instructors only (no grade was decided).
+        }
         if (students) {
             // Before the due date Gradescope shows this page to students at once: only what they
             // can see anyway (visible tests, visible data cases, scenes), never a total with hidden points.
@@ -141,11 +159,10 @@ final class HtmlReport {
             r.ignored().forEach(a -> b.append("ignored: ").append(esc(a)).append('\n'));
             b.append("</pre>\n");
         }
-        for (String n : r.notes()) {
-            // The sandbox mode and the grader's own setup problems are for instructors.
-            if (!students || !(n.startsWith("sandbox") || n.startsWith("grader setup"))) {
-                b.append("<pre style=\"").append(PRE).append("\">").append(esc(n)).append("</pre>\n");
-            }
+        // The sandbox mode, the grader's setup, the variants' seed and notes on their bounds are for
+        // instructors (GradeReport.staffOnly): the students' page holds what their code caused.
+        for (String n : students ? r.studentNotes() : r.notes()) {
+            b.append("<pre style=\"").append(PRE).append("\">").append(esc(n)).append("</pre>\n");
         }
         if (maxWidth > 0) {
             b.append("<p style=\"font-size:85%;color:#555\">(Images shown at most ").append(maxWidth)
@@ -182,7 +199,9 @@ final class HtmlReport {
         }
         b.append("<div id=\"fix-first\" style=\"margin:8px 0;padding:6px 10px;border-left:4px solid ")
                 .append(items.isEmpty() ? "#16702e" : "#b00020").append(";background:#fafafa\">");
-        if (items.isEmpty()) {
+        if (r.milestones().isEmpty()) {
+            b.append("<b>Nothing was graded</b> (see below).");
+        } else if (items.isEmpty()) {
             b.append("<b>Nothing to fix:</b> every ").append(students ? "visible " : "")
                     .append("test, data case and scene passes.");
         } else {

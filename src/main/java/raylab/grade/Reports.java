@@ -105,6 +105,18 @@ public final class Reports {
      */
     public static String gradescope(GradeReport r) throws IOException {
         Map<String, Object> root = new LinkedHashMap<>();
+        if (r.failed()) {
+            // No score: none was decided. Gradescope's own run_autograder (bundle gradescope) does
+            // not upload this file at all, so that Gradescope says "The autograder failed to
+            // execute correctly"; grade-all's status column says "failed".
+            root.put("execution_time", Math.round(r.seconds()));
+            root.put("output", GradeReport.FAILED_FOR_STUDENTS);
+            root.put("extra_data", Map.of("grading_failed", true));
+            root.put("visibility", "visible");
+            root.put("stdout_visibility", "hidden");
+            root.put("tests", List.of());
+            return JSON.writeValueAsString(root);
+        }
         root.put("score", GradeReport.round(r.score()));
         root.put("execution_time", Math.round(r.seconds()));
         root.put("output", HtmlReport.forStudents(r));

@@ -16,11 +16,13 @@ import com.fasterxml.jackson.databind.node.ObjectNode;
  * the scene's point; {@link VariantCheck} checks it):
  * <ul>
  * <li>a perspective eye orbits its look-at point: the look-at point, the up vector and so the
- *     scene's centre of interest stay; its elevation stays between 10° and 170° from up;</li>
+ *     scene's centre of interest stay; its elevation stays between 10° and 170° from up (a camera
+ *     given by {@code viewDirection} orbits the point one unit ahead and keeps its form);</li>
  * <li>an orthographic view pans by whole pixels: every face that lay on a row or column of pixel
- *     centres still does;</li>
+ *     centres still does (a {@code lookAt} point pans with the eye);</li>
  * <li>lights and surfaces move by per-axis offsets: an axis with bound 0 is never moved (an
- *     object on the floor stays on it, a lamp under a shelf keeps its height).</li>
+ *     object on the floor stays on it, a lamp under a shelf keeps its height); an intensity
+ *     written as one number stays one number.</li>
  * </ul>
  */
 public final class SceneVariants {
@@ -66,13 +68,19 @@ public final class SceneVariants {
             double k = 1 + r.within(spec.intensity());
             ObjectNode light = (ObjectNode) l;
             light.set("position", vec(add(vec(light.get("position")), d)));
-            double[] i = vec(light.get("intensity"));
-            light.set("intensity", vec(new double[] {i[0] * k, i[1] * k, i[2] * k}));
+            JsonNode i = light.get("intensity");
+            if (i.isNumber()) { // one number g: the gray [g, g, g], kept in that form
+                light.put("intensity", round(i.asDouble() * k));
+            } else {
+                double[] c = vec(i);
+                light.set("intensity", vec(new double[] {c[0] * k, c[1] * k, c[2] * k}));
+            }
         }
         for (VariantSpec.Group g : spec.groups()) {
             double[] d = r.offset(g.move());
             for (JsonNode sn : s.path("surfaces")) {
-                if (g.objects().contains(sn.path("name").asText(null))) {
+                String name = sn.path("name").asText(null); // an unnamed surface is in no group
+                if (name != null && g.objects().contains(name)) {
                     move((ObjectNode) sn, d);
                 }
             }
@@ -82,7 +90,10 @@ public final class SceneVariants {
 
     private static void orbit(ObjectNode cam, double yawDeg, double pitchDeg, double dist, double fovDeg) {
         double[] eye = vec(cam.get("eye"));
-        double[] at = vec(cam.get("lookAt"));
+        // A camera given by viewDirection orbits the point one unit ahead along it and keeps that
+        // form: the variant has the same keys as the published scene.
+        boolean byDirection = !cam.has("lookAt");
+        double[] at = byDirection ? add(eye, unit(vec(cam.get("viewDirection")))) : vec(cam.get("lookAt"));
         double[] up = unit(cam.has("up") ? vec(cam.get("up")) : new double[] {0, 1, 0});
         double[] v = sub(eye, at);
         double r = len(v);
@@ -99,7 +110,11 @@ public final class SceneVariants {
         } else {
             v = scale(v, 1 / r); // looking along up: no orbit about it
         }
-        cam.set("eye", vec(add(at, scale(v, r * (1 + dist)))));
+        double[] moved = add(at, scale(v, r * (1 + dist)));
+        cam.set("eye", vec(moved));
+        if (byDirection) {
+            cam.set("viewDirection", vec(sub(at, moved)));
+        }
         double fov = cam.path("fov").asDouble(60);
         cam.put("fov", round(Math.max(5, Math.min(120, fov + fovDeg))));
     }
@@ -107,18 +122,26 @@ public final class SceneVariants {
     /** Shifts an orthographic view by whole pixels along the image's right and up directions. */
     private static void pan(ObjectNode cam, int heightPixels, long px, long py) {
         double pixel = cam.path("viewHeight").asDouble() / heightPixels;
-        double[] d = unit(vec(cam.get("viewDirection")));
+        double[] eye = vec(cam.get("eye"));
+        boolean byPoint = cam.has("lookAt"); // then the look-at point pans with the eye
+        double[] d = unit(byPoint ? sub(vec(cam.get("lookAt")), eye) : vec(cam.get("viewDirection")));
         double[] up = vec(cam.get("up"));
         double[] right = unit(cross(d, up));
         double[] trueUp = unit(cross(right, d));
-        double[] eye = vec(cam.get("eye"));
         // No rounding here: whole pixels along axis-aligned directions are exact already.
-        double[] moved = add(eye, add(scale(right, px * pixel), scale(trueUp, py * pixel)));
-        ArrayNode a = cam.arrayNode();
-        for (double c : moved) {
+        double[] shift = add(scale(right, px * pixel), scale(trueUp, py * pixel));
+        cam.set("eye", exact(add(eye, shift)));
+        if (byPoint) {
+            cam.set("lookAt", exact(add(vec(cam.get("lookAt")), shift)));
+        }
+    }
+
+    private static ArrayNode exact(double[] v) {
+        ArrayNode a = com.fasterxml.jackson.databind.node.JsonNodeFactory.instance.arrayNode();
+        for (double c : v) {
             a.add(c);
         }
-        cam.set("eye", a);
+        return a;
     }
 
     private static void move(ObjectNode s, double[] d) {

@@ -75,8 +75,10 @@ class GradedVariantsTest {
         long seed = 20261202;
         Path out = dir.resolve("out-ref");
         JsonNode r = grade(GraderTest.submission(dir, "reference"), seed, out, "box", "shadows");
-        assertTrue(r.get("output").asText().contains("scene variants: seed " + seed), "the report names the seed");
         String html = Files.readString(out.resolve("report.html"));
+        assertTrue(html.contains("scene variants: seed " + seed), "the instructors' report names the seed");
+        assertFalse(r.get("output").asText().contains("scene variants: seed"),
+                "the students' page does not (an instructor note): " + r.get("output").asText());
         for (String id : List.of("box", "shadows")) {
             Assignment a = all.byId(id).orElseThrow();
             for (int i = 0; i < a.scenes().size(); i++) {

@@ -134,8 +134,9 @@ class GraderAttackTest {
             String m = t.get("message").asText() + t.get("output").asText();
             assertFalse(m.contains("Hidden") || m.contains("SphereCasesTest"),
                     "PrairieLearn results show hidden details: " + m);
-            assertTrue(visible.contains(t.get("name").asText()), "PrairieLearn shows a test that is not visible: "
-                    + t.get("name").asText() + " (visible: " + visible + ")");
+            assertTrue(visible.contains(t.get("name").asText())
+                    || t.get("name").asText().endsWith(": " + raylab.grade.platform.PrairieLearn.HIDDEN_ROW),
+                    "PrairieLearn shows a test that is not visible: " + t.get("name").asText() + " (visible: " + visible + ")");
         }
     }
 
@@ -479,10 +480,7 @@ class GraderAttackTest {
         int status = GradeCommand.run(options(), Files.createDirectories(dir.resolve("empty")), out,
                 s -> recurse(0), true, new PrintStream(new ByteArrayOutputStream(), true, StandardCharsets.UTF_8));
         assertEquals(1, status);
-        JsonNode r = JSON.readTree(out.resolve("results.json").toFile());
-        GraderTest.checkSchema(r);
-        assertEquals(0, r.get("score").asDouble());
-        assertTrue(r.get("output").asText().contains("StackOverflowError"), r.get("output").asText());
+        assertGradingFailed(out, "StackOverflowError");
     }
 
     /** Running out of memory inside the grader still gives a results.json naming it. */
@@ -494,9 +492,21 @@ class GraderAttackTest {
             hog[0] = 1;
         }, true, new PrintStream(new ByteArrayOutputStream(), true, StandardCharsets.UTF_8));
         assertEquals(1, status);
+        assertGradingFailed(out, "OutOfMemoryError");
+    }
+
+    /**
+     * A failed grading: results.json says so without a score or the cause (the students' view);
+     * the instructors' report.html has the cause.
+     */
+    static void assertGradingFailed(Path out, String cause) throws IOException {
         JsonNode r = JSON.readTree(out.resolve("results.json").toFile());
-        GraderTest.checkSchema(r);
-        assertTrue(r.get("output").asText().contains("OutOfMemoryError"), r.get("output").asText());
+        assertFalse(r.has("score"), "no score was decided: " + r);
+        assertTrue(r.path("extra_data").path("grading_failed").asBoolean(), "flagged as failed: " + r);
+        assertEquals(GradeReport.FAILED_FOR_STUDENTS, r.get("output").asText());
+        assertEquals(0, r.get("tests").size(), "no tests: " + r);
+        String html = Files.readString(out.resolve("report.html"));
+        assertTrue(html.contains(cause), "the instructors' report names the cause " + cause + ": " + html);
     }
 
     @Test

@@ -103,15 +103,27 @@ class PlatformBundlesIT {
         JsonNode box = JSON.readTree(course.resolve("questions/raylab/box/info.json").toFile());
         String[] entry = box.get("externalGradingOptions").get("entrypoint").asText().split(" ");
 
-        // The reference box: full marks, the hidden tests left out (no due date in this bundle).
+        // The reference box, on time (no due date in this bundle): full marks of every point, the
+        // hidden tests and data cases graded and counted, shown as one row with their total only.
+        Assignment boxA = Assignments.load(root).byId("box").orElseThrow();
         JsonNode ref = gradePrairieLearn(sfc, entry, "Box.java", reference(root, "box", "Box.java"), "reference");
         assertTrue(ref.get("gradable").asBoolean());
         assertEquals(1.0, ref.get("score").asDouble(), 1e-9, () -> "reference box: " + ref.get("message") + ref.get("tests"));
         assertTrue(ref.get("tests").size() > 5, "per-test entries: " + ref.get("tests"));
+        double max = 0;
+        JsonNode hiddenRow = null;
         for (JsonNode t : ref.get("tests")) {
-            assertFalse(t.get("name").asText().contains("Hidden"), "no hidden test before the due date: " + t);
+            assertFalse(t.get("name").asText().contains("Hidden"), "no hidden test's name before the due date: " + t);
             assertTrue(t.get("name").asText().startsWith("box: "), t.toString());
+            max += t.get("max_points").asDouble();
+            if (t.get("name").asText().equals("box: " + raylab.grade.platform.PrairieLearn.HIDDEN_ROW)) {
+                hiddenRow = t;
+            }
         }
+        assertEquals(boxA.points(), max, 1e-6, "the grade of record is of all the milestone's points: " + ref.get("tests"));
+        assertTrue(hiddenRow != null && hiddenRow.get("max_points").asDouble() >= boxA.tests().hiddenPoints(),
+                "the hidden tests counted, as one total: " + ref.get("tests"));
+        assertEquals(hiddenRow.get("max_points").asDouble(), hiddenRow.get("points").asDouble(), 1e-9, hiddenRow.toString());
 
         // The lecture's slabs as written (no case for d = 0): points lost, the scene that shows it with its images.
         String buggy = Files.readString(root.resolve("src/test/resources/submissions/bugs3/Box.java"));

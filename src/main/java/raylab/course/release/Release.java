@@ -105,6 +105,8 @@ public final class Release {
                 // The grading table and the total: from assignment.json, never by hand.
                 String text = new String(bytes, StandardCharsets.UTF_8);
                 bytes = HandoutTable.update(text, GradingPlan.of(root, owner)).getBytes(StandardCharsets.UTF_8);
+            } else if (rel.equals("pom.xml")) {
+                bytes = starterPom(new String(bytes, StandardCharsets.UTF_8)).getBytes(StandardCharsets.UTF_8);
             } else if (rel.endsWith(".java")) {
                 String text = new String(bytes, StandardCharsets.UTF_8);
                 if (SolutionRegions.hasRegions(text) || assignments.ownerOf(rel).isPresent()) {
@@ -136,6 +138,36 @@ public final class Release {
             }
         }
         return new Tree(out, Set.copyOf(exec), List.copyOf(stubbed), assignments.ids());
+    }
+
+    /**
+     * The starter's pom.xml: the instructor's without its {@code mutation} profile (and the comment
+     * before it), which names every hidden test class and the grader's folder.
+     */
+    static String starterPom(String pom) {
+        int id = pom.indexOf("<id>mutation</id>");
+        if (id < 0) {
+            return pom;
+        }
+        int start = pom.lastIndexOf("<profile>", id);
+        int end = pom.indexOf("</profile>", id);
+        if (start < 0 || end < 0) {
+            return pom;
+        }
+        end += "</profile>".length();
+        int comment = pom.lastIndexOf("<!--", start);
+        if (comment >= 0 && pom.indexOf("-->", comment) < start
+                && pom.substring(pom.indexOf("-->", comment) + 3, start).isBlank()) {
+            start = comment;
+        }
+        int lineStart = pom.lastIndexOf('\n', start) + 1;
+        if (pom.substring(lineStart, start).isBlank()) {
+            start = lineStart;
+        }
+        if (end < pom.length() && pom.charAt(end) == '\n') {
+            end++;
+        }
+        return pom.substring(0, start) + pom.substring(end);
     }
 
     /** The grader's data-case checker, and where the starter gets a copy when some case is visible. */

@@ -154,6 +154,30 @@ public final class ReleaseVerifier {
         return checks;
     }
 
+    /**
+     * Lines of the starter's files that name a hidden test class, or the grader's folder
+     * ({@code grader/}) outside the shared framework's Java sources (which name it generically to
+     * find hidden tests in the instructor's tree): "FILE:LINE names ...".
+     */
+    static List<String> namesHidden(Path starter, List<String> files, Set<String> hiddenClasses) throws IOException {
+        List<String> named = new ArrayList<>();
+        for (String rel : files) {
+            String text = new String(Files.readAllBytes(starter.resolve(rel)), StandardCharsets.ISO_8859_1);
+            String[] lines = text.split("\n", -1);
+            for (int i = 0; i < lines.length; i++) {
+                for (String h : hiddenClasses) {
+                    if (lines[i].contains(h)) {
+                        named.add(rel + ":" + (i + 1) + " names the hidden test " + h);
+                    }
+                }
+                if (lines[i].contains("grader/") && !(rel.startsWith("src/main/java/") && rel.endsWith(".java"))) {
+                    named.add(rel + ":" + (i + 1) + " names the grader's folder (" + abbreviate(lines[i].trim(), 40) + ")");
+                }
+            }
+        }
+        return named;
+    }
+
     private static List<Check> get(Future<List<Check>> f, String what) {
         try {
             return f.get();
@@ -258,6 +282,14 @@ public final class ReleaseVerifier {
             }
         }
         out.add(Check.of("nothing instructor-only or hidden", privateFiles, hiddenPaths.size() + " hidden tests absent"));
+
+        // No file of the starter names a hidden test, and none but the framework's sources the
+        // grader's folder (the mutation profile of the instructor's pom.xml named every hidden test
+        // class and grader/tests).
+        Set<String> hiddenClasses = new HashSet<>();
+        hiddenNames.forEach(n -> hiddenClasses.add(n.endsWith(".java") ? n.substring(0, n.length() - 5) : n));
+        out.add(Check.of("no file names a hidden test or grader/", namesHidden(starter, files, hiddenClasses),
+                hiddenClasses.size() + " hidden test names looked for"));
 
         List<String> desc = new ArrayList<>();
         try {

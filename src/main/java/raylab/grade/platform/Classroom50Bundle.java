@@ -75,12 +75,20 @@ public final class Classroom50Bundle {
                 cmd = ["bash", "./raylab", "check"] + ([m] if m else []) + ["--classroom50", str(result)]
                 print("raylab:", " ".join(cmd), flush=True)
                 proc = subprocess.run(cmd, check=False)
-                # Exit status 1 is a failed test or a differing scene: graded. Anything else, or no file: an error.
-                if proc.returncode not in (0, 1) or not result.is_file():
-                    print("::error::raylab check did not write result.json (exit status %d)" % proc.returncode,
-                          file=sys.stderr)
+                # Exit status 1 is a failed test or a differing scene: graded. Anything else, no file or a
+                # file that is not JSON: the grading failed. Classroom 50's runner turns a non-zero exit of
+                # autograder.py into an error result (status=error, no score), its way to say so.
+                data = None
+                if proc.returncode in (0, 1) and result.is_file():
+                    try:
+                        data = json.loads(result.read_text())
+                    except ValueError:
+                        data = None
+                if data is None:
+                    print("::error::raylab: the autograder failed (raylab check exit status %d, no valid result.json): "
+                          "no points were decided. This is a problem of the course's autograder, not of your code: "
+                          "please tell the course staff." % proc.returncode, file=sys.stderr)
                     sys.exit(1)
-                data = json.loads(result.read_text())
                 print("raylab: %d / %d (hundredths of a point, visible parts)" % (data["score"], data["max-score"]))
 
 

@@ -28,15 +28,22 @@ import raylab.grade.GradeReport;
  * each scene's render, reference and difference as {@code images} (PNG data URIs). The file stays
  * under PrairieLearn's limit of 1 MB: images are halved in size until it fits, then dropped.
  *
- * <p>Hidden items (visibility other than {@code visible}) are left out entirely before the due date,
- * with neither score nor message, and the score is the share of the visible points; after the due
- * date (a regrade) they are in, and the score is of everything.
+ * <p>The grade of record includes the hidden items (visibility other than {@code visible}) at
+ * every grading: PrairieLearn's assessment regrade only recomputes stored scores and never runs an
+ * external grader again (PrairieLearn's {@code docs/assessment/regrading.md}), so hidden tests
+ * graded "later" would never count for on-time work. Before the due date (and always, without
+ * one) they are shown as one row per milestone, "hidden tests and data cases", with their points
+ * and maximum only: no name, message, output or note of a hidden item. After the due date (a new
+ * submission or a grading job run again by the staff) each hidden item has its own row.
  */
 public final class PrairieLearn {
     /** PrairieLearn rejects a results file of more than 1 MB. */
     public static final int LIMIT_BYTES = 1_000_000;
 
     private static final ObjectMapper JSON = new ObjectMapper();
+
+    /** The name (after "MILESTONE: ") of the row that totals a milestone's hidden items before the due date. */
+    public static final String HIDDEN_ROW = "hidden tests and data cases (total)";
 
     private PrairieLearn() {
     }
@@ -80,14 +87,32 @@ public final class PrairieLearn {
      * @param maxWidth 0: images as rendered; > 0: at most this many pixels wide; -1: no images
      */
     static Map<String, Object> tree(GradeReport r, boolean afterDueDate, int maxWidth) throws IOException {
+        if (r.failed()) {
+            // PrairieLearn's way to say that no grade was decided: not gradable (no attempt charged,
+            // no score recorded), with the message; the cause is in the grader's log for the staff.
+            Map<String, Object> root = new LinkedHashMap<>();
+            root.put("gradable", false);
+            root.put("score", 0.0);
+            root.put("message", GradeReport.FAILED_FOR_STUDENTS);
+            root.put("output", "");
+            root.put("tests", List.of());
+            return root;
+        }
         double score = 0;
         double max = 0;
         int hiddenLeftOut = 0;
         List<Map<String, Object>> tests = new ArrayList<>();
         for (GradeReport.Milestone m : r.milestones()) {
+            double hiddenPoints = 0;
+            double hiddenMax = 0;
+            int hiddenCount = 0;
             for (GradeReport.Test t : m.tests()) {
                 if (!shown(t, afterDueDate)) {
+                    // Graded now and counted; shown only as the milestone's total below.
                     hiddenLeftOut++;
+                    hiddenCount++;
+                    hiddenPoints += t.score();
+                    hiddenMax += t.maxScore();
                     continue;
                 }
                 score += t.score();
@@ -112,6 +137,19 @@ public final class PrairieLearn {
                 }
                 tests.add(j);
             }
+            if (hiddenCount > 0) {
+                score += hiddenPoints;
+                max += hiddenMax;
+                Map<String, Object> j = new LinkedHashMap<>();
+                j.put("name", m.id() + ": " + HIDDEN_ROW);
+                j.put("description", hiddenCount + " hidden item" + (hiddenCount == 1 ? "" : "s") + " of " + m.title()
+                        + ", graded now and counted in the score; which passed and their messages are withheld");
+                j.put("points", round(hiddenPoints));
+                j.put("max_points", round(hiddenMax));
+                j.put("message", "");
+                j.put("output", "");
+                tests.add(j);
+            }
         }
         Map<String, Object> root = new LinkedHashMap<>();
         boolean gradable = !compileError(r);
@@ -120,7 +158,8 @@ public final class PrairieLearn {
         StringBuilder msg = new StringBuilder();
         msg.append(String.format(Locale.ROOT, "raylab: %s / %s points", fmt(score), fmt(max)));
         if (hiddenLeftOut > 0) {
-            msg.append(" (visible tests, data cases and scenes; the hidden tests are graded after the due date)");
+            msg.append(" (the hidden tests and data cases included: their total is shown, their names and messages are"
+                    + " withheld)");
         }
         msg.append('.');
         for (GradeReport.Milestone m : r.milestones()) {
@@ -135,7 +174,7 @@ public final class PrairieLearn {
             msg.append("\nThis submission does not compile: it was not counted as an attempt. Fix the error and submit again.");
         }
         if (r.milestones().isEmpty()) {
-            r.notes().forEach(n -> msg.append('\n').append(n));
+            r.studentNotes().forEach(n -> msg.append('\n').append(n));
         }
         root.put("message", msg.toString());
         StringBuilder out = new StringBuilder();

@@ -110,10 +110,10 @@ public final class PrairieLearnBundle {
             }
             List<Assignment> questions = whole ? List.of() : all.all();
             if (whole) {
-                question(tmp, "all", "raylab: the whole ray tracer", all.all(), null, image, timeout);
+                question(tmp, "all", "raylab: the whole ray tracer", all.all(), null, image, timeout, due != null);
             } else {
                 for (Assignment a : questions) {
-                    question(tmp, a.id(), "raylab " + a.id() + ": " + a.title(), List.of(a), a.id(), image, timeout);
+                    question(tmp, a.id(), "raylab " + a.id() + ": " + a.title(), List.of(a), a.id(), image, timeout, due != null);
                 }
             }
             write(tmp.resolve("README.md"), readme(whole, due, timeout));
@@ -126,7 +126,7 @@ public final class PrairieLearnBundle {
     }
 
     private static void question(Path dir, String id, String title, List<Assignment> milestones, String milestone,
-            String image, int timeout) throws IOException {
+            String image, int timeout, boolean due) throws IOException {
         Path q = Files.createDirectories(dir.resolve("questions/raylab").resolve(id));
         Map<String, Object> info = new LinkedHashMap<>();
         info.put("uuid", UUID.nameUUIDFromBytes(("raylab/" + id).getBytes(StandardCharsets.UTF_8)).toString());
@@ -163,8 +163,9 @@ public final class PrairieLearnBundle {
         html.append(" from <code>src/main/java/</code> of your starter. Run <code>./raylab check")
                 .append(milestone == null ? "" : " " + esc(milestone))
                 .append("</code> first: it runs the visible tests and scenes the grader runs.</p>\n");
-        html.append("  <p>The hidden tests are graded after the due date; before it the score is of the visible"
-                + " tests, data cases and scenes.</p>\n</pl-question-panel>\n\n");
+        html.append("  <p>Your score includes the hidden tests and data cases, graded at every submission: they are"
+                + " shown as one row with their total; which ones passed and their messages stay withheld"
+                + (due ? " until the due date" : "") + ".</p>\n</pl-question-panel>\n\n");
         html.append("<pl-file-upload file-names=\"").append(esc(String.join(", ", names))).append("\"></pl-file-upload>\n\n");
         html.append("<pl-submission-panel>\n  <pl-external-grader-results></pl-external-grader-results>\n"
                 + "  <pl-file-preview></pl-file-preview>\n</pl-submission-panel>\n");
@@ -185,9 +186,11 @@ public final class PrairieLearnBundle {
                 - Details: docs/instructors.md, "PrairieLearn", in the raylab project.
                 """.formatted(whole ? "One question, `raylab/all`, grades every milestone."
                         : "One question per milestone (`raylab/sphere`, ...), each grading only its milestone.",
-                        timeout, due == null ? "No due date given: the hidden tests are never graded here (grade them with"
-                                + " `raylab grade-all`, or bundle again with `--due`)."
-                                : "Due " + due + ": gradings after it (a regrade) include the hidden tests.");
+                        timeout, due == null ? "No due date given: every grading counts the hidden tests and data cases in"
+                                + " the score; students see them as one row per milestone with their total, never their names"
+                                + " or messages (bundle again with `--due` to show them in full after a due date)."
+                                : "Due " + due + ": every grading counts the hidden tests and data cases; before the due date"
+                                + " students see their total only, gradings after it show each with its message.");
     }
 
     private static String esc(String s) {

@@ -50,15 +50,22 @@ class PrairieLearnTest {
     }
 
     @Test
-    void scoreIsTheShareOfThePointsShownAndHiddenTestsWaitForTheDueDate() throws Exception {
+    void theHiddenTestsCountAtEveryGradingAndAreShownAsATotalBeforeTheDueDate() throws Exception {
         GradeReport r = report(List.of("the hidden tests' run did not finish (see the hidden tests)"),
                 test("box", "hitsFromOutside", Kind.VISIBLE, 2, true, "visible", null),
                 test("box", "missesBehind", Kind.VISIBLE, 3, false, "visible", null),
-                test("box", "BoxHiddenTest.secretEdge", Kind.HIDDEN, 5, false, "after_due_date", null));
+                test("box", "BoxHiddenTest.secretEdge", Kind.HIDDEN, 5, false, "after_due_date", null),
+                test("box", "BoxHiddenTest.secretCorner", Kind.HIDDEN, 4, true, "after_due_date", null));
         JsonNode before = valid(PrairieLearn.results(r, false));
-        assertEquals(0.4, before.get("score").asDouble(), 1e-12, "2 of the 5 visible points");
-        assertEquals(2, before.get("tests").size(), "the hidden test is left out before the due date: " + before);
-        assertFalse(before.toString().contains("secretEdge"), "nothing of the hidden test: " + before);
+        assertEquals(6.0 / 14, before.get("score").asDouble(), 1e-12, "2 visible + 4 hidden of all 14 points");
+        assertEquals(3, before.get("tests").size(), "the hidden tests as one row before the due date: " + before);
+        JsonNode total = before.get("tests").get(2);
+        assertEquals("box: " + PrairieLearn.HIDDEN_ROW, total.get("name").asText());
+        assertEquals(4.0, total.get("points").asDouble());
+        assertEquals(9.0, total.get("max_points").asDouble());
+        assertEquals("", total.get("message").asText());
+        assertFalse(before.toString().contains("secretEdge") || before.toString().contains("secretCorner")
+                || before.toString().contains("BoxHiddenTest"), "no name of a hidden test: " + before);
         assertFalse(before.get("message").asText().contains("did not finish"), "nor of the hidden run: " + before);
         assertTrue(before.get("gradable").asBoolean());
         assertEquals("expected t = 2, got 3", before.get("tests").get(1).get("message").asText());
@@ -66,8 +73,8 @@ class PrairieLearnTest {
         assertEquals(3.0, before.get("tests").get(1).get("max_points").asDouble());
 
         JsonNode after = valid(PrairieLearn.results(r, true));
-        assertEquals(0.2, after.get("score").asDouble(), 1e-12, "2 of all 10 points");
-        assertEquals(3, after.get("tests").size());
+        assertEquals(6.0 / 14, after.get("score").asDouble(), 1e-12, "the same grade, 6 of all 14 points");
+        assertEquals(4, after.get("tests").size());
         assertEquals("box: BoxHiddenTest.secretEdge", after.get("tests").get(2).get("name").asText());
         assertTrue(after.get("message").asText().contains("did not finish"), after.get("message").asText());
     }
