@@ -26,7 +26,7 @@ import raylab.scene.Display;
             "Without an argument: your files in this project, milestone by milestone. With a zip or a folder",
             "(what you are about to upload): the files the grader takes from it, and a warning for everything else."},
         exitCodeListHeading = "%nExit status:%n",
-        exitCodeList = {"0:at least one file will be graded", "1:no file would be graded",
+        exitCodeList = {"0:at least one file will be graded", "1:no file would be graded, or a graded file is there twice",
             "2:no such file, not a readable zip, or not run from the project folder"})
 public final class SubmitCheckCommand implements Callable<Integer> {
     /** At most this many files that are not graded are listed. */
@@ -66,7 +66,9 @@ public final class SubmitCheckCommand implements Callable<Integer> {
         for (Assignment a : assignments) {
             for (Assignment.StudentFile f : a.files()) {
                 String text = s.files().get(f.path());
-                out.printf("  %-8s %-46s %s%n", a.id(), f.path(), text == null ? "not in the submission"
+                out.printf("  %-8s %-46s %s%n", a.id(), f.path(), s.conflicts().containsKey(f.path())
+                        ? "NOT GRADED: " + s.duplicates().get(f.path()).size() + " copies, none at this path (see below)"
+                        : text == null ? "not in the submission"
                         : "from " + s.sources().get(f.path()) + stubNote(text));
             }
         }
@@ -78,6 +80,15 @@ public final class SubmitCheckCommand implements Callable<Integer> {
             if (s.ignored().size() > LISTED) {
                 out.println("  ... and " + (s.ignored().size() - LISTED) + " more");
             }
+        }
+        if (!s.duplicates().isEmpty()) {
+            out.println();
+            s.duplicates().forEach((target, paths) -> out.println("REFUSED: " + paths.size() + " copies of "
+                    + target.substring(target.lastIndexOf('/') + 1) + " in the submission: " + String.join(" and ", paths)
+                    + (s.conflicts().containsKey(target) ? "; the grader would grade neither"
+                            : "; the grader would take only " + s.sources().get(target))
+                    + ". Remove all but one (at " + target + ")."));
+            return Main.FAILED;
         }
         return s.files().isEmpty() ? Main.FAILED : Main.OK;
     }

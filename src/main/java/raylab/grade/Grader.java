@@ -287,6 +287,10 @@ public final class Grader {
         List<String> notes = new ArrayList<>();
         List<String> missing = a.files().stream().map(Assignment.StudentFile::path)
                 .filter(p -> !sub.files().containsKey(p)).toList();
+        List<String> twice = missing.stream().map(p -> sub.conflicts().get(p)).filter(java.util.Objects::nonNull).toList();
+        if (!twice.isEmpty()) {
+            return zeroed(a, setup, String.join("; ", twice));
+        }
         if (!missing.isEmpty()) {
             String names = String.join(", ", missing.stream().map(p -> p.substring(p.lastIndexOf('/') + 1)).toList());
             String todo = String.join(", ", a.files().stream().flatMap(f -> f.methods().stream()).toList());

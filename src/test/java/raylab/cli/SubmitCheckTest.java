@@ -62,6 +62,26 @@ class SubmitCheckTest {
     }
 
     @Test
+    void twoCopiesOfAGradedFileAreRefusedNamingBoth() throws Exception {
+        Path zip = dir.resolve("two.zip");
+        String sphere = Files.readString(Path.of("src/main/java/raylab/surface/Sphere.java"));
+        try (OutputStream f = Files.newOutputStream(zip); ZipOutputStream z = new ZipOutputStream(f)) {
+            for (String name : new String[] {"backup/Sphere.java", "Sphere.java"}) {
+                z.putNextEntry(new ZipEntry(name));
+                z.write(sphere.getBytes(StandardCharsets.UTF_8));
+                z.closeEntry();
+            }
+        }
+        String[] r = run("submit-check", zip.toString());
+        assertEquals("1", r[0], "exit status; stdout: " + r[1] + " stderr: " + r[2]);
+        assertTrue(r[1].contains("REFUSED: 2 copies of Sphere.java in the submission: backup/Sphere.java and Sphere.java;"
+                + " the grader would grade neither. Remove all but one (at src/main/java/raylab/surface/Sphere.java)."),
+                r[1]);
+        assertTrue(r[1].lines().anyMatch(l -> l.matches("  sphere +src/main/java/raylab/surface/Sphere.java +NOT GRADED: 2 "
+                + "copies, none at this path \\(see below\\)")), r[1]);
+    }
+
+    @Test
     void aMissingZipIsBadInput() {
         String[] r = run("submit-check", dir.resolve("none.zip").toString());
         assertEquals("2", r[0]);
