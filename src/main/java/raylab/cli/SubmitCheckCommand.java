@@ -5,7 +5,10 @@ import java.io.PrintWriter;
 import java.nio.charset.StandardCharsets;
 import java.nio.file.Files;
 import java.nio.file.Path;
+import java.util.ArrayList;
+import java.util.LinkedHashMap;
 import java.util.List;
+import java.util.Map;
 import java.util.concurrent.Callable;
 
 import picocli.CommandLine.Command;
@@ -14,6 +17,7 @@ import picocli.CommandLine.Parameters;
 import picocli.CommandLine.Spec;
 import raylab.course.Assignment;
 import raylab.course.Assignments;
+import raylab.course.MilestoneCheck;
 import raylab.course.Submission;
 import raylab.scene.Display;
 
@@ -95,25 +99,65 @@ public final class SubmitCheckCommand implements Callable<Integer> {
 
     /** The project's own student files, milestone by milestone. */
     private static int project(PrintWriter out, Path root, List<Assignment> assignments) throws IOException {
+        return project(out, root, assignments, List.of());
+    }
+
+    /**
+     * The project's student files, each "finished" only when its milestone's visible tests and
+     * data cases pass (naming those that fail); {@code first} goes before raylab's own classes
+     * (a test puts a student's compiled file there).
+     */
+    static int project(PrintWriter out, Path root, List<Assignment> assignments, List<Path> first) throws IOException {
+        out.println("Running the visible tests of every milestone ...");
+        out.flush();
+        Map<String, MilestoneCheck.Outcome> outcomes = new LinkedHashMap<>();
+        for (MilestoneCheck.Outcome o : MilestoneCheck.run(root, assignments, 1, line -> { }, first, false)) {
+            outcomes.put(o.assignment().id(), o);
+        }
         out.println("The files graded, milestone by milestone (upload these; see \"Submitting\" in README.md):");
         int present = 0;
+        List<String> details = new ArrayList<>();
         for (Assignment a : assignments) {
             for (Assignment.StudentFile f : a.files()) {
                 Path p = root.resolve(f.path());
                 String state;
                 if (Files.isRegularFile(p)) {
                     present++;
-                    state = stubNote(Files.readString(p, StandardCharsets.UTF_8)).strip();
-                    state = state.isEmpty() ? "written" : state.substring(1, state.length() - 1);
+                    String stub = stubNote(Files.readString(p, StandardCharsets.UTF_8)).strip();
+                    state = !stub.isEmpty() ? stub.substring(1, stub.length() - 1) : finished(outcomes.get(a.id()), details);
                 } else {
                     state = "MISSING";
                 }
                 out.printf("  %-8s %-46s %s%n", a.id(), f.path(), state);
             }
         }
+        details.stream().distinct().forEach(out::println);
         out.println("Nothing else is graded: the grader uses its own copy of every other file.");
         out.println("To check a zip before uploading it: ./raylab submit-check FILE.zip");
         return present == 0 ? Main.FAILED : Main.OK;
+    }
+
+    /** "finished (its N visible tests pass)", or what is not; the failing tests' names go to {@code details}. */
+    static String finished(MilestoneCheck.Outcome o, List<String> details) {
+        if (o == null) {
+            return "not checked";
+        }
+        if (!o.problem().isEmpty()) {
+            return "NOT FINISHED: " + MilestoneCheck.oneLine(o.problem(), 120);
+        }
+        List<String> failing = o.rows().stream().filter(r -> !r.passed()
+                && r.item().kind() != raylab.course.GradingPlan.Kind.SCENE).map(r -> (r.item().kind()
+                == raylab.course.GradingPlan.Kind.CASE ? "data case " : "") + "\"" + r.item().name() + "\"").toList();
+        if (o.tests().isEmpty() || (o.plan() == null && o.testsPassed() < o.testCount())) {
+            return "NOT FINISHED: its visible tests did not run (./raylab check " + o.assignment().id() + ")";
+        }
+        if (failing.isEmpty()) {
+            return "finished: its " + o.testCount() + " visible tests pass";
+        }
+        details.add(o.assignment().id() + ": failing visible tests (./raylab check " + o.assignment().id()
+                + " shows why):");
+        failing.forEach(n -> details.add("  FAIL " + n));
+        return "NOT FINISHED: " + failing.size() + " of " + o.testCount() + " visible tests fail (below)";
     }
 
     /** " (still the starter's stub: throws NotImplemented)" when the file still throws it. */

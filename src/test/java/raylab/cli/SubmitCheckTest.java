@@ -9,6 +9,9 @@ import java.io.StringWriter;
 import java.nio.charset.StandardCharsets;
 import java.nio.file.Files;
 import java.nio.file.Path;
+import java.util.List;
+import java.util.Map;
+import java.util.stream.Stream;
 import java.util.zip.ZipEntry;
 import java.util.zip.ZipOutputStream;
 
@@ -57,7 +60,8 @@ class SubmitCheckTest {
         String[] r = run("submit-check");
         assertEquals("0", r[0], "exit status; stderr: " + r[2]);
         for (String f : StudentFault.DEFAULT_FILES) {
-            assertTrue(r[1].contains(f), f + " listed:\n" + r[1]);
+            assertTrue(r[1].lines().anyMatch(l -> l.contains(f) && l.matches(".* finished: its \\d+ visible tests pass")),
+                    f + " listed as finished (the reference passes its tests):\n" + r[1]);
         }
     }
 
@@ -79,6 +83,46 @@ class SubmitCheckTest {
                 r[1]);
         assertTrue(r[1].lines().anyMatch(l -> l.matches("  sphere +src/main/java/raylab/surface/Sphere.java +NOT GRADED: 2 "
                 + "copies, none at this path \\(see below\\)")), r[1]);
+    }
+
+    /** A file that no longer throws NotImplemented but fails tests is not called finished, and they are named. */
+    @Test
+    void aWrittenFileWithFailingTestsIsNotFinished() throws Exception {
+        Path root = Path.of("").toAbsolutePath();
+        Path copy = dir.resolve("project");
+        for (String d : List.of("assignments", "src/test/java", "grader/tests/raylab/cases")) {
+            try (Stream<Path> s = Files.walk(root.resolve(d))) {
+                for (Path p : (Iterable<Path>) s::iterator) {
+                    Path t = copy.resolve(root.relativize(p).toString());
+                    if (Files.isDirectory(p)) {
+                        Files.createDirectories(t);
+                    } else {
+                        Files.copy(p, t);
+                    }
+                }
+            }
+        }
+        String buggy = Files.readString(root.resolve("src/test/resources/submissions/bugs2/Sphere.java"));
+        assertTrue(buggy.contains("BUG: the far root is never tried"), "the planted bug");
+        Path sphereFile = copy.resolve("src/main/java/raylab/surface/Sphere.java");
+        Files.createDirectories(sphereFile.getParent());
+        Files.writeString(sphereFile, buggy);
+        Path overlay = dir.resolve("student-classes");
+        raylab.course.JavaBuild.Result compiled = raylab.course.MilestoneBuild.compileOverlay(
+                Map.of("raylab/surface/Sphere.java", buggy), dir.resolve("student-src"),
+                raylab.course.JavaBuild.ownClassPath(), overlay);
+        assertTrue(compiled.success(), compiled.errors().toString());
+        raylab.course.Assignment sphere = raylab.course.Assignments.load(copy).byId("sphere").orElseThrow();
+
+        StringWriter text = new StringWriter();
+        PrintWriter w = new PrintWriter(text, true);
+        SubmitCheckCommand.project(w, copy, List.of(sphere), List.of(overlay));
+        String out = text.toString();
+        assertTrue(out.lines().anyMatch(l -> l.matches("  sphere +src/main/java/raylab/surface/Sphere.java +NOT FINISHED: "
+                + "\\d+ of \\d+ visible tests fail \\(below\\)")), "not finished:\n" + out);
+        assertTrue(out.contains("  FAIL \"a ray starting inside hits the far side (the farther root), normal outward\""),
+                "the failing test named as in the handout:\n" + out);
+        assertTrue(!out.contains("written"), out);
     }
 
     @Test
