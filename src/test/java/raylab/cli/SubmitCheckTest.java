@@ -11,7 +11,6 @@ import java.nio.file.Files;
 import java.nio.file.Path;
 import java.util.List;
 import java.util.Map;
-import java.util.stream.Stream;
 import java.util.zip.ZipEntry;
 import java.util.zip.ZipOutputStream;
 
@@ -89,19 +88,7 @@ class SubmitCheckTest {
     @Test
     void aWrittenFileWithFailingTestsIsNotFinished() throws Exception {
         Path root = Path.of("").toAbsolutePath();
-        Path copy = dir.resolve("project");
-        for (String d : List.of("assignments", "src/test/java", "grader/tests/raylab/cases")) {
-            try (Stream<Path> s = Files.walk(root.resolve(d))) {
-                for (Path p : (Iterable<Path>) s::iterator) {
-                    Path t = copy.resolve(root.relativize(p).toString());
-                    if (Files.isDirectory(p)) {
-                        Files.createDirectories(t);
-                    } else {
-                        Files.copy(p, t);
-                    }
-                }
-            }
-        }
+        Path copy = CheckFeedbackTest.copyLayout(root, dir.resolve("project"));
         String buggy = Files.readString(root.resolve("src/test/resources/submissions/bugs2/Sphere.java"));
         assertTrue(buggy.contains("BUG: the far root is never tried"), "the planted bug");
         Path sphereFile = copy.resolve("src/main/java/raylab/surface/Sphere.java");
