@@ -9,6 +9,7 @@ import java.util.ArrayList;
 import java.util.LinkedHashMap;
 import java.util.List;
 import java.util.Map;
+import java.util.Set;
 import java.util.concurrent.Callable;
 
 import picocli.CommandLine.Command;
@@ -17,6 +18,8 @@ import picocli.CommandLine.Parameters;
 import picocli.CommandLine.Spec;
 import raylab.course.Assignment;
 import raylab.course.Assignments;
+import raylab.course.GradedBuild;
+import raylab.course.JavaBuild;
 import raylab.course.MilestoneCheck;
 import raylab.course.Submission;
 import raylab.scene.Display;
@@ -85,6 +88,8 @@ public final class SubmitCheckCommand implements Callable<Integer> {
                 out.println("  ... and " + (s.ignored().size() - LISTED) + " more");
             }
         }
+        boolean breaks = !compiles(out, s.files(), studentFiles(assignments));
+        breaks |= printDrift(out, GradedBuild.check(root, s.files(), studentFiles(assignments), JavaBuild.ownClassPath()));
         if (!s.duplicates().isEmpty()) {
             out.println();
             s.duplicates().forEach((target, paths) -> out.println("REFUSED: " + paths.size() + " copies of "
@@ -94,7 +99,7 @@ public final class SubmitCheckCommand implements Callable<Integer> {
                     + ". Remove all but one (at " + target + ")."));
             return Main.FAILED;
         }
-        return s.files().isEmpty() ? Main.FAILED : Main.OK;
+        return s.files().isEmpty() || breaks ? Main.FAILED : Main.OK;
     }
 
     /** The project's own student files, milestone by milestone. */
@@ -133,8 +138,10 @@ public final class SubmitCheckCommand implements Callable<Integer> {
         }
         details.stream().distinct().forEach(out::println);
         out.println("Nothing else is graded: the grader uses its own copy of every other file.");
+        boolean breaks = printDrift(out, GradedBuild.check(root, projectFiles(root, assignments), studentFiles(assignments),
+                withFirst(first)));
         out.println("To check a zip before uploading it: ./raylab submit-check FILE.zip");
-        return present == 0 ? Main.FAILED : Main.OK;
+        return present == 0 || breaks ? Main.FAILED : Main.OK;
     }
 
     /** "finished (its N visible tests pass)", or what is not; the failing tests' names go to {@code details}. */
@@ -158,6 +165,84 @@ public final class SubmitCheckCommand implements Callable<Integer> {
                 + " shows why):");
         failing.forEach(n -> details.add("  FAIL " + n));
         return "NOT FINISHED: " + failing.size() + " of " + o.testCount() + " visible tests fail (below)";
+    }
+
+    /**
+     * Compiles a submission's graded files as the grader does, against the framework (this
+     * project's build) and prints javac's errors; false if they do not compile.
+     */
+    static boolean compiles(PrintWriter out, Map<String, String> files, Set<String> studentFiles) throws IOException {
+        if (files.isEmpty()) {
+            return true;
+        }
+        Path work = Files.createTempDirectory("raylab-submit-check");
+        try {
+            List<Path> sources = new ArrayList<>();
+            for (var e : files.entrySet()) {
+                Path p = work.resolve("src").resolve(e.getKey());
+                Files.createDirectories(p.getParent());
+                Files.writeString(p, e.getValue(), StandardCharsets.UTF_8);
+                sources.add(p);
+            }
+            JavaBuild.Result r = JavaBuild.compile(sources, JavaBuild.ownClassPath(), work.resolve("classes"));
+            if (r.success()) {
+                return true;
+            }
+            out.println();
+            out.println("DOES NOT COMPILE (as the grader builds it, so the milestone would score 0):");
+            for (JavaBuild.Problem p : r.errors().stream().limit(10).toList()) {
+                String file = p.file() == null ? "" : work.resolve("src").relativize(p.file()).toString().replace('\\', '/');
+                out.println("  " + (file.isEmpty() ? "" : file + ":" + p.line() + ": ") + p.message());
+            }
+            return false;
+        } finally {
+            try (var walk = Files.walk(work)) {
+                for (Path p : walk.sorted(java.util.Comparator.reverseOrder()).toList()) {
+                    Files.deleteIfExists(p);
+                }
+            }
+        }
+    }
+
+    /**
+     * Prints what the grader builds differently (framework files changed or added, and the graded
+     * files' uses of what only they have); true if a graded file would not compile at the grader.
+     */
+    static boolean printDrift(PrintWriter out, GradedBuild.Drift d) {
+        if (d == null || d.none()) {
+            return false;
+        }
+        out.println();
+        for (String u : d.uses()) {
+            out.println("WILL NOT COMPILE AT THE GRADER: " + u + ".");
+        }
+        for (String l : d.lines().subList(d.uses().size(), d.lines().size())) {
+            out.println("NOTE: " + l + ".");
+        }
+        return !d.uses().isEmpty();
+    }
+
+    /** The graded files of the project at {@code root}, by path, as they are now. */
+    static Map<String, String> projectFiles(Path root, List<Assignment> assignments) throws IOException {
+        Map<String, String> out = new LinkedHashMap<>();
+        for (String f : studentFiles(assignments)) {
+            if (Files.isRegularFile(root.resolve(f))) {
+                out.put(f, Files.readString(root.resolve(f), StandardCharsets.UTF_8));
+            }
+        }
+        return out;
+    }
+
+    static Set<String> studentFiles(List<Assignment> assignments) {
+        Set<String> out = new java.util.LinkedHashSet<>();
+        assignments.forEach(a -> a.files().forEach(f -> out.add(f.path())));
+        return out;
+    }
+
+    private static List<Path> withFirst(List<Path> first) {
+        List<Path> cp = new ArrayList<>(first);
+        cp.addAll(JavaBuild.ownClassPath());
+        return cp;
     }
 
     /** " (still the starter's stub: throws NotImplemented)" when the file still throws it. */

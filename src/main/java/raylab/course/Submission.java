@@ -39,6 +39,7 @@ public final class Submission {
     private final List<String> ignored;
     private final Map<String, String> conflicts;
     private final Map<String, List<String>> duplicates = new LinkedHashMap<>();
+    private final Map<String, String> framework = new LinkedHashMap<>();
 
     private Submission(Map<String, String> files, Map<String, String> sources, List<String> ignored,
             Map<String, String> conflicts) {
@@ -78,6 +79,14 @@ public final class Submission {
     /** Graded files found more than once (taken or not): assignment path to every copy's path, escaped. */
     public Map<String, List<String>> duplicates() {
         return duplicates;
+    }
+
+    /**
+     * Framework sources of the student's own in the submission (never graded): the path they
+     * would have in the project (src/main/java/raylab/math/Vec3.java) to their text.
+     */
+    public Map<String, String> framework() {
+        return framework;
     }
 
     /** An empty submission with one explanation (for an unreadable input). */
@@ -150,6 +159,7 @@ public final class Submission {
         Map<String, String> files = new LinkedHashMap<>();
         Map<String, String> sources = new LinkedHashMap<>();
         Map<String, List<Copy>> copies = new LinkedHashMap<>();
+        Map<String, String> framework = new LinkedHashMap<>();
         List<String> editable = new ArrayList<>();
         for (Assignment a : assignments) {
             for (Assignment.StudentFile f : a.files()) {
@@ -176,6 +186,17 @@ public final class Submission {
                 }
                 if (target != null) {
                     break;
+                }
+            }
+            if (target == null && e.bytes != null && e.path.endsWith(".java")) {
+                // A framework file of the student's own: never graded; the grader explains a use of what only it has.
+                String text = new String(e.bytes, StandardCharsets.UTF_8);
+                String pkg = PackageScanner.packageOf(text);
+                if (pkg.startsWith("raylab.") && !e.path.contains("src/test/")) {
+                    String at = "src/main/java/" + pkg.replace('.', '/') + "/" + name;
+                    if (!editable.contains(at)) {
+                        framework.putIfAbsent(at, text);
+                    }
                 }
             }
             if (target == null) {
@@ -222,6 +243,7 @@ public final class Submission {
             sources.put(target, taken.path);
         });
                 Submission s = new Submission(files, sources, ignored, conflicts);
+        s.framework.putAll(framework);
         copies.forEach((target, found) -> {
             if (found.size() > 1) {
                 s.duplicates.put(target, found.stream().map(c -> raylab.scene.Display.escape(c.path)).toList());

@@ -333,6 +333,11 @@ public final class Grader {
                 msg.append("\n  ").append(file.isEmpty() ? "" : "src/main/java/" + file + ":" + p.line() + ": ")
                         .append(p.message());
             }
+            Map<String, String> graded = new LinkedHashMap<>();
+            files.forEach((k, v) -> graded.put("src/main/java/" + k, v));
+            for (String use : raylab.course.GradedBuild.atGrader(graded, sub.framework(), below)) {
+                msg.append("\n  ").append(use);
+            }
             return zeroed(a, setup, msg.toString());
         }
         List<Path> lower = new ArrayList<>(below);

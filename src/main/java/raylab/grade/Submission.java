@@ -43,6 +43,11 @@ public final class Submission {
         return intake.conflicts();
     }
 
+    /** The submission's own framework sources (never graded): project path to text. */
+    public Map<String, String> framework() {
+        return intake.framework();
+    }
+
     /** An empty submission with one explanation (for an unreadable input). */
     static Submission unreadable(String why) {
         return new Submission(raylab.course.Submission.unreadable(why));
