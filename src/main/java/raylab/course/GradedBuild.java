@@ -38,10 +38,7 @@ import javax.tools.StandardJavaFileManager;
 import javax.tools.ToolProvider;
 
 import com.sun.source.tree.CompilationUnitTree;
-import com.sun.source.tree.IdentifierTree;
-import com.sun.source.tree.MemberReferenceTree;
-import com.sun.source.tree.MemberSelectTree;
-import com.sun.source.tree.NewClassTree;
+import com.sun.source.tree.Tree;
 import com.sun.source.util.JavacTask;
 import com.sun.source.util.TreePath;
 import com.sun.source.util.TreePathScanner;
@@ -61,6 +58,9 @@ public final class GradedBuild {
     /** The manifest the release writes into the starter. */
     public static final String MANIFEST = "assignments/framework.manifest";
     private static final String SOURCES = "src/main/java/";
+    /** The trees that name a symbol the graded file uses. */
+    private static final Set<Tree.Kind> USES = Set.of(Tree.Kind.IDENTIFIER, Tree.Kind.MEMBER_SELECT,
+            Tree.Kind.MEMBER_REFERENCE, Tree.Kind.NEW_CLASS);
 
     private GradedBuild() {
     }
@@ -301,48 +301,25 @@ public final class GradedBuild {
                 }
                 String user = unitPath.substring(unitPath.lastIndexOf('/') + 1).replace(".java", "");
                 new TreePathScanner<Void, Void>() {
-                    private void used() {
-                        Element e = t.getElement(getCurrentPath());
+                    @Override
+                    public Void scan(Tree tree, Void v) {
+                        if (tree != null && USES.contains(tree.getKind())) {
+                            used(new TreePath(getCurrentPath(), tree));
+                        }
+                        return super.scan(tree, v);
+                    }
+
+                    private void used(TreePath at) {
+                        Element e = t.getElement(at);
                         if (e == null || e.getKind() == ElementKind.PACKAGE || e.getKind() == ElementKind.LOCAL_VARIABLE
                                 || e.getKind() == ElementKind.PARAMETER) {
                             return;
                         }
                         TypeElement top = topLevel(e);
-                        if (top == null) {
-                            return;
-                        }
-                        String file = ownByClass.get(top.getQualifiedName().toString());
-                        if (file == null) {
-                            return;
-                        }
-                        String sig = signature(e, elements, types);
-                        if (!original.contains(sig)) {
+                        String file = top == null ? null : ownByClass.get(top.getQualifiedName().toString());
+                        if (file != null && !original.contains(signature(e, elements, types))) {
                             out.add(sentence(user, e, top, file, addedFiles.contains(file)));
                         }
-                    }
-
-                    @Override
-                    public Void visitIdentifier(IdentifierTree node, Void v) {
-                        used();
-                        return super.visitIdentifier(node, v);
-                    }
-
-                    @Override
-                    public Void visitMemberSelect(MemberSelectTree node, Void v) {
-                        used();
-                        return super.visitMemberSelect(node, v);
-                    }
-
-                    @Override
-                    public Void visitMemberReference(MemberReferenceTree node, Void v) {
-                        used();
-                        return super.visitMemberReference(node, v);
-                    }
-
-                    @Override
-                    public Void visitNewClass(NewClassTree node, Void v) {
-                        used();
-                        return super.visitNewClass(node, v);
                     }
                 }.scan(new TreePath(unit), null);
             }

@@ -56,15 +56,10 @@ class GradedBuildTest {
     static void project() throws IOException {
         copy = CheckFeedbackTest.copyLayout(root, dir.resolve("project"));
         SortedMap<String, byte[]> released = new TreeMap<>();
+        IncrementalTest.copyTree(root.resolve("src/main/java"), copy.resolve("src/main/java"));
         try (Stream<Path> s = Files.walk(root.resolve("src/main/java"))) {
-            for (Path p : (Iterable<Path>) s::iterator) {
-                Path t = copy.resolve(root.relativize(p).toString());
-                if (Files.isDirectory(p)) {
-                    Files.createDirectories(t);
-                } else {
-                    Files.copy(p, t);
-                    released.put(root.relativize(p).toString().replace('\\', '/'), Files.readAllBytes(p));
-                }
+            for (Path p : s.filter(Files::isRegularFile).toList()) {
+                released.put(root.relativize(p).toString().replace('\\', '/'), Files.readAllBytes(p));
             }
         }
         Set<String> students = SubmitCheckCommand.studentFiles(Assignments.load(root).all());
