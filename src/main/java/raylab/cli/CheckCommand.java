@@ -76,11 +76,15 @@ public final class CheckCommand implements Callable<Integer> {
             printDetails(out, o);
         }
         printTable(out, outcomes);
+        // What the grader builds differently: it never uses the student's copy of the framework.
+        boolean breaks = SubmitCheckCommand.printDrift(out, raylab.course.GradedBuild.check(root,
+                SubmitCheckCommand.projectFiles(root, selected), SubmitCheckCommand.studentFiles(all.all()),
+                raylab.course.JavaBuild.ownClassPath()));
         out.flush();
         if (classroom50 != null) {
             raylab.course.Classroom50Result.write(classroom50, outcomes, System.getenv(), root);
         }
-        return outcomes.stream().allMatch(MilestoneCheck.Outcome::done) ? Main.OK : Main.FAILED;
+        return !breaks && outcomes.stream().allMatch(MilestoneCheck.Outcome::done) ? Main.OK : Main.FAILED;
     }
 
     /** How many failures are shown in full (message and hint); the rest get one line each. */

@@ -21,6 +21,7 @@ import raylab.render.Renderer;
 import raylab.scene.Display;
 import raylab.scene.Scene;
 import raylab.scene.SceneLoader;
+import raylab.course.Watchdog;
 
 /** {@code raylab render SCENE.json}: renders a scene, prints the plan and the counters. */
 @Command(name = "render", mixinStandardHelpOptions = true,
@@ -139,9 +140,25 @@ public final class RenderCommand implements Callable<Integer> {
             out.flush();
         }
         Image image;
-        try (Progress progress = Progress.start(scene, Renderer.TILE)) {
-            image = renderer.render(threads, progress::tileDone);
+        // Stuck student code is named and stopped when no tile finishes within the bound.
+        try (Progress progress = Progress.start(scene, Renderer.TILE);
+                Watchdog watchdog = Watchdog.start(Watchdog.FLOOR,
+                        StudentFault.studentFiles(Path.of("").toAbsolutePath()), stuck -> { }, true)) {
+            try {
+                image = renderer.render(threads, tile -> {
+                    watchdog.progress();
+                    progress.tileDone(tile);
+                });
+            } catch (ThreadDeath | RuntimeException e) {
+                if (watchdog.message() == null) {
+                    throw e;
+                }
+                throw new UserError(watchdog.message() + " while rendering " + Display.path(scenePath), Main.FAILED);
+            }
         } catch (RuntimeException | StackOverflowError e) {
+            if (e instanceof UserError) {
+                throw e;
+            }
             throw studentsOrRethrow(e, renderer, scene, mode, scenePath);
         }
         long t1 = System.nanoTime();

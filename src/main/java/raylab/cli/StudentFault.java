@@ -1,14 +1,11 @@
 package raylab.cli;
 
-import java.io.IOException;
 import java.nio.file.Path;
 import java.util.ArrayList;
 import java.util.Collection;
 import java.util.List;
 import java.util.Optional;
 
-import raylab.course.Assignment;
-import raylab.course.Assignments;
 import raylab.course.NotImplemented;
 
 /**
@@ -20,38 +17,22 @@ import raylab.course.NotImplemented;
  */
 public final class StudentFault {
     /** The student files when no assignment.json can be read (the seven of the course). */
-    static final List<String> DEFAULT_FILES = List.of("src/main/java/raylab/surface/Sphere.java",
-            "src/main/java/raylab/surface/Box.java", "src/main/java/raylab/surface/Triangle.java",
-            "src/main/java/raylab/material/Lambertian.java", "src/main/java/raylab/shading/Shading.java",
-            "src/main/java/raylab/shading/Shadows.java", "src/main/java/raylab/material/BlinnPhong.java");
+    static final List<String> DEFAULT_FILES = raylab.course.Watchdog.DEFAULT_FILES;
 
     /** At most this many student frames are listed. */
-    static final int FRAMES = 4;
+    static final int FRAMES = raylab.course.Watchdog.FRAMES;
 
     private StudentFault() {
     }
 
     /** The student files of the project at {@code root}, '/'-separated relative paths. */
     public static List<String> studentFiles(Path root) {
-        try {
-            List<String> files = new ArrayList<>();
-            for (Assignment a : Assignments.load(root).all()) {
-                for (Assignment.StudentFile f : a.files()) {
-                    files.add(f.path().replace('\\', '/'));
-                }
-            }
-            return files.isEmpty() ? DEFAULT_FILES : files;
-        } catch (IOException | RuntimeException e) {
-            return DEFAULT_FILES;
-        }
+        return raylab.course.Watchdog.studentFiles(root);
     }
 
     /** The source path of a frame's class: src/main/java/raylab/surface/Sphere.java for raylab.surface.Sphere$1. */
     static String sourceOf(StackTraceElement e) {
-        String cls = e.getClassName();
-        int dollar = cls.indexOf('$');
-        String outer = dollar < 0 ? cls : cls.substring(0, dollar);
-        return "src/main/java/" + outer.replace('.', '/') + ".java";
+        return raylab.course.Watchdog.sourceOf(e);
     }
 
     /** The frames of {@code t} (or, if it has none, of its causes) that lie in student files, innermost first. */
@@ -103,20 +84,15 @@ public final class StudentFault {
         if (thrown instanceof StackOverflowError) {
             b.append(" (endless recursion?)");
         }
-        if (frames.size() > 1) {
-            b.append(" [called from ");
-            for (int i = 1; i < Math.min(frames.size(), FRAMES); i++) {
-                b.append(i == 1 ? "" : " < ").append(place(frames.get(i)));
-            }
-            b.append(frames.size() > FRAMES ? " < ...]" : "]");
-        }
-        return Optional.of(b.toString());
+        return Optional.of(b.append(calledFrom(frames)).toString());
+    }
+
+    static String calledFrom(List<StackTraceElement> frames) {
+        return raylab.course.Watchdog.calledFrom(frames);
     }
 
     /** Sphere.intersect (Sphere.java:37) */
     static String place(StackTraceElement e) {
-        String cls = e.getClassName();
-        String simple = cls.substring(cls.lastIndexOf('.') + 1);
-        return simple + "." + e.getMethodName() + " (" + e.getFileName() + ":" + e.getLineNumber() + ")";
+        return raylab.course.Watchdog.place(e);
     }
 }

@@ -5,7 +5,11 @@ import java.io.PrintWriter;
 import java.nio.charset.StandardCharsets;
 import java.nio.file.Files;
 import java.nio.file.Path;
+import java.util.ArrayList;
+import java.util.LinkedHashMap;
 import java.util.List;
+import java.util.Map;
+import java.util.Set;
 import java.util.concurrent.Callable;
 
 import picocli.CommandLine.Command;
@@ -14,6 +18,9 @@ import picocli.CommandLine.Parameters;
 import picocli.CommandLine.Spec;
 import raylab.course.Assignment;
 import raylab.course.Assignments;
+import raylab.course.GradedBuild;
+import raylab.course.JavaBuild;
+import raylab.course.MilestoneCheck;
 import raylab.course.Submission;
 import raylab.scene.Display;
 
@@ -26,7 +33,7 @@ import raylab.scene.Display;
             "Without an argument: your files in this project, milestone by milestone. With a zip or a folder",
             "(what you are about to upload): the files the grader takes from it, and a warning for everything else."},
         exitCodeListHeading = "%nExit status:%n",
-        exitCodeList = {"0:at least one file will be graded", "1:no file would be graded",
+        exitCodeList = {"0:at least one file will be graded", "1:no file would be graded, or a graded file is there twice",
             "2:no such file, not a readable zip, or not run from the project folder"})
 public final class SubmitCheckCommand implements Callable<Integer> {
     /** At most this many files that are not graded are listed. */
@@ -66,7 +73,9 @@ public final class SubmitCheckCommand implements Callable<Integer> {
         for (Assignment a : assignments) {
             for (Assignment.StudentFile f : a.files()) {
                 String text = s.files().get(f.path());
-                out.printf("  %-8s %-46s %s%n", a.id(), f.path(), text == null ? "not in the submission"
+                out.printf("  %-8s %-46s %s%n", a.id(), f.path(), s.conflicts().containsKey(f.path())
+                        ? "NOT GRADED: " + s.duplicates().get(f.path()).size() + " copies, none at this path (see below)"
+                        : text == null ? "not in the submission"
                         : "from " + s.sources().get(f.path()) + stubNote(text));
             }
         }
@@ -79,30 +88,161 @@ public final class SubmitCheckCommand implements Callable<Integer> {
                 out.println("  ... and " + (s.ignored().size() - LISTED) + " more");
             }
         }
-        return s.files().isEmpty() ? Main.FAILED : Main.OK;
+        boolean breaks = !compiles(out, s.files(), studentFiles(assignments));
+        breaks |= printDrift(out, GradedBuild.check(root, s.files(), studentFiles(assignments), JavaBuild.ownClassPath()));
+        if (!s.duplicates().isEmpty()) {
+            out.println();
+            s.duplicates().forEach((target, paths) -> out.println("REFUSED: " + paths.size() + " copies of "
+                    + target.substring(target.lastIndexOf('/') + 1) + " in the submission: " + String.join(" and ", paths)
+                    + (s.conflicts().containsKey(target) ? "; the grader would grade neither"
+                            : "; the grader would take only " + s.sources().get(target))
+                    + ". Remove all but one (at " + target + ")."));
+            return Main.FAILED;
+        }
+        return s.files().isEmpty() || breaks ? Main.FAILED : Main.OK;
     }
 
     /** The project's own student files, milestone by milestone. */
     private static int project(PrintWriter out, Path root, List<Assignment> assignments) throws IOException {
+        return project(out, root, assignments, List.of());
+    }
+
+    /**
+     * The project's student files, each "finished" only when its milestone's visible tests and
+     * data cases pass (naming those that fail); {@code first} goes before raylab's own classes
+     * (a test puts a student's compiled file there).
+     */
+    static int project(PrintWriter out, Path root, List<Assignment> assignments, List<Path> first) throws IOException {
+        out.println("Running the visible tests of every milestone ...");
+        out.flush();
+        Map<String, MilestoneCheck.Outcome> outcomes = new LinkedHashMap<>();
+        for (MilestoneCheck.Outcome o : MilestoneCheck.run(root, assignments, 1, line -> { }, first, false)) {
+            outcomes.put(o.assignment().id(), o);
+        }
         out.println("The files graded, milestone by milestone (upload these; see \"Submitting\" in README.md):");
         int present = 0;
+        List<String> details = new ArrayList<>();
         for (Assignment a : assignments) {
             for (Assignment.StudentFile f : a.files()) {
                 Path p = root.resolve(f.path());
                 String state;
                 if (Files.isRegularFile(p)) {
                     present++;
-                    state = stubNote(Files.readString(p, StandardCharsets.UTF_8)).strip();
-                    state = state.isEmpty() ? "written" : state.substring(1, state.length() - 1);
+                    String stub = stubNote(Files.readString(p, StandardCharsets.UTF_8)).strip();
+                    state = !stub.isEmpty() ? stub.substring(1, stub.length() - 1) : finished(outcomes.get(a.id()), details);
                 } else {
                     state = "MISSING";
                 }
                 out.printf("  %-8s %-46s %s%n", a.id(), f.path(), state);
             }
         }
+        details.stream().distinct().forEach(out::println);
         out.println("Nothing else is graded: the grader uses its own copy of every other file.");
+        boolean breaks = printDrift(out, GradedBuild.check(root, projectFiles(root, assignments), studentFiles(assignments),
+                withFirst(first)));
         out.println("To check a zip before uploading it: ./raylab submit-check FILE.zip");
-        return present == 0 ? Main.FAILED : Main.OK;
+        return present == 0 || breaks ? Main.FAILED : Main.OK;
+    }
+
+    /** "finished (its N visible tests pass)", or what is not; the failing tests' names go to {@code details}. */
+    static String finished(MilestoneCheck.Outcome o, List<String> details) {
+        if (o == null) {
+            return "not checked";
+        }
+        if (!o.problem().isEmpty()) {
+            return "NOT FINISHED: " + MilestoneCheck.oneLine(o.problem(), 120);
+        }
+        List<String> failing = o.rows().stream().filter(r -> !r.passed()
+                && r.item().kind() != raylab.course.GradingPlan.Kind.SCENE).map(r -> (r.item().kind()
+                == raylab.course.GradingPlan.Kind.CASE ? "data case " : "") + "\"" + r.item().name() + "\"").toList();
+        if (o.tests().isEmpty() || (o.plan() == null && o.testsPassed() < o.testCount())) {
+            return "NOT FINISHED: its visible tests did not run (./raylab check " + o.assignment().id() + ")";
+        }
+        if (failing.isEmpty()) {
+            return "finished: its " + o.testCount() + " visible tests pass";
+        }
+        details.add(o.assignment().id() + ": failing visible tests (./raylab check " + o.assignment().id()
+                + " shows why):");
+        failing.forEach(n -> details.add("  FAIL " + n));
+        return "NOT FINISHED: " + failing.size() + " of " + o.testCount() + " visible tests fail (below)";
+    }
+
+    /**
+     * Compiles a submission's graded files as the grader does, against the framework (this
+     * project's build) and prints javac's errors; false if they do not compile.
+     */
+    static boolean compiles(PrintWriter out, Map<String, String> files, Set<String> studentFiles) throws IOException {
+        if (files.isEmpty()) {
+            return true;
+        }
+        Path work = Files.createTempDirectory("raylab-submit-check");
+        try {
+            List<Path> sources = new ArrayList<>();
+            for (var e : files.entrySet()) {
+                Path p = work.resolve("src").resolve(e.getKey());
+                Files.createDirectories(p.getParent());
+                Files.writeString(p, e.getValue(), StandardCharsets.UTF_8);
+                sources.add(p);
+            }
+            JavaBuild.Result r = JavaBuild.compile(sources, JavaBuild.ownClassPath(), work.resolve("classes"));
+            if (r.success()) {
+                return true;
+            }
+            out.println();
+            out.println("DOES NOT COMPILE (as the grader builds it, so the milestone would score 0):");
+            for (JavaBuild.Problem p : r.errors().stream().limit(10).toList()) {
+                String file = p.file() == null ? "" : work.resolve("src").relativize(p.file()).toString().replace('\\', '/');
+                out.println("  " + (file.isEmpty() ? "" : file + ":" + p.line() + ": ") + p.message());
+            }
+            return false;
+        } finally {
+            try (var walk = Files.walk(work)) {
+                for (Path p : walk.sorted(java.util.Comparator.reverseOrder()).toList()) {
+                    Files.deleteIfExists(p);
+                }
+            }
+        }
+    }
+
+    /**
+     * Prints what the grader builds differently (framework files changed or added, and the graded
+     * files' uses of what only they have); true if a graded file would not compile at the grader.
+     */
+    static boolean printDrift(PrintWriter out, GradedBuild.Drift d) {
+        if (d == null || d.none()) {
+            return false;
+        }
+        out.println();
+        for (String u : d.uses()) {
+            out.println("WILL NOT COMPILE AT THE GRADER: " + u + ".");
+        }
+        for (String l : d.lines().subList(d.uses().size(), d.lines().size())) {
+            out.println("NOTE: " + l + ".");
+        }
+        return !d.uses().isEmpty();
+    }
+
+    /** The graded files of the project at {@code root}, by path, as they are now. */
+    static Map<String, String> projectFiles(Path root, List<Assignment> assignments) throws IOException {
+        Map<String, String> out = new LinkedHashMap<>();
+        for (String f : studentFiles(assignments)) {
+            if (Files.isRegularFile(root.resolve(f))) {
+                out.put(f, Files.readString(root.resolve(f), StandardCharsets.UTF_8));
+            }
+        }
+        return out;
+    }
+
+    static Set<String> studentFiles(List<Assignment> assignments) {
+        Set<String> out = new java.util.LinkedHashSet<>();
+        assignments.forEach(a -> a.files().forEach(f -> out.add(f.path())));
+        return out;
+    }
+
+    private static List<Path> withFirst(List<Path> first) {
+        List<Path> cp = new ArrayList<>(first);
+        cp.addAll(JavaBuild.ownClassPath());
+        return cp;
     }
 
     /** " (still the starter's stub: throws NotImplemented)" when the file still throws it. */

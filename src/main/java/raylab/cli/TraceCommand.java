@@ -27,6 +27,7 @@ import raylab.render.ShadeListener;
 import raylab.render.Shader;
 import raylab.scene.Scene;
 import raylab.scene.SceneLoader;
+import raylab.course.Watchdog;
 
 /** {@code raylab trace SCENE.json --pixel X Y}: the ray tree of one pixel, step by step. */
 @Command(name = "trace", mixinStandardHelpOptions = true, separator = " ",
@@ -57,8 +58,24 @@ public final class TraceCommand implements Callable<Integer> {
                     + scene.height + " image of " + scenePath);
         }
         try {
-            return trace(out, scene, x, y);
+            // The trace of one pixel has no unit of work smaller than itself: stuck code is named after the bound.
+            try (Watchdog watchdog = Watchdog.start(Watchdog.FLOOR,
+                    StudentFault.studentFiles(Path.of("").toAbsolutePath()), stuck -> { }, true)) {
+                try {
+                    return trace(out, scene, x, y);
+                } catch (ThreadDeath | RuntimeException e) {
+                    if (watchdog.message() == null) {
+                        throw e;
+                    }
+                    out.flush();
+                    throw new UserError(watchdog.message() + " while tracing pixel (" + x + ", " + y + ") of "
+                            + raylab.scene.Display.path(scenePath), Main.FAILED);
+                }
+            }
         } catch (RuntimeException | StackOverflowError e) {
+            if (e instanceof UserError) {
+                throw e;
+            }
             java.util.List<String> files = StudentFault.studentFiles(Path.of("").toAbsolutePath());
             if (!StudentFault.isStudents(e, files)) {
                 throw e;

@@ -233,6 +233,15 @@ public final class MilestoneCheck {
      */
     public static List<Outcome> run(Path root, List<Assignment> selected, int threads, Consumer<String> progress,
             List<Path> first) throws IOException {
+        return run(root, selected, threads, progress, first, true);
+    }
+
+    /**
+     * As {@link #run(Path, List, int, Consumer, List)}; without {@code renderScenes} only the
+     * visible tests and data cases run (each outcome's scene list is then empty).
+     */
+    public static List<Outcome> run(Path root, List<Assignment> selected, int threads, Consumer<String> progress,
+            List<Path> first, boolean renderScenes) throws IOException {
         Path work = root.resolve("target/check");
         List<Path> own = new ArrayList<>(first);
         own.addAll(JavaBuild.ownClassPath());
@@ -307,7 +316,7 @@ public final class MilestoneCheck {
         Map<Assignment.GradedScene, java.util.concurrent.Future<SceneOutcome>> rendered = new LinkedHashMap<>();
         for (Assignment a : selected) {
             List<String> files = a.files().stream().map(Assignment.StudentFile::path).toList();
-            for (Assignment.GradedScene g : a.scenes()) {
+            for (Assignment.GradedScene g : renderScenes ? a.scenes() : List.<Assignment.GradedScene>of()) {
                 progress.accept("rendering " + g.scene() + " ...");
                 rendered.put(g, renders.submit(() -> render(root, g, own, threads, files)));
             }
@@ -341,7 +350,7 @@ public final class MilestoneCheck {
         List<Outcome> out = new ArrayList<>();
         for (Assignment a : selected) {
             List<SceneOutcome> scenes = new ArrayList<>();
-            for (Assignment.GradedScene g : a.scenes()) {
+            for (Assignment.GradedScene g : renderScenes ? a.scenes() : List.<Assignment.GradedScene>of()) {
                 scenes.add(finished(g, rendered.get(g)));
             }
             out.add(new Outcome(a, results.getOrDefault(a.id(), List.of()), problems.getOrDefault(a.id(), ""),
@@ -450,7 +459,7 @@ public final class MilestoneCheck {
         return className.substring(className.lastIndexOf('.') + 1);
     }
 
-    static String oneLine(String s, int n) {
+    public static String oneLine(String s, int n) {
         if (s == null) {
             return "";
         }

@@ -22,6 +22,9 @@ import java.util.zip.ZipFile;
  * The files of a student's submission that the grader will use: only the files the assignments
  * let students edit, found by their path in the release's layout or, for a flat upload, by file
  * name; with the right package declaration. Everything else is listed as ignored with the reason.
+ * A graded file found twice is taken from the copy at the release's path
+ * ({@code src/main/java/raylab/...}, possibly under one folder); with no single such copy, neither
+ * is graded and {@link #conflicts()} says why: a stale backup never wins by its place in a zip.
  */
 public final class Submission {
     /** Largest student file read, in bytes. */
@@ -34,9 +37,15 @@ public final class Submission {
     private final Map<String, String> files;
     private final Map<String, String> sources;
     private final List<String> ignored;
+    private final Map<String, String> conflicts;
+    private final Map<String, List<String>> duplicates = new LinkedHashMap<>();
+    private final Map<String, String> framework = new LinkedHashMap<>();
 
-    private Submission(Map<String, String> files, Map<String, String> sources, List<String> ignored) {
+    private Submission(Map<String, String> files, Map<String, String> sources, List<String> ignored,
+            Map<String, String> conflicts) {
         this.files = files;
+        this.conflicts = conflicts.entrySet().stream().collect(java.util.stream.Collectors.toMap(Map.Entry::getKey,
+                x -> raylab.scene.Display.escape(x.getValue()), (x, y) -> x, LinkedHashMap::new));
         // Paths in a zip may hold line breaks and other control characters: shown escaped.
         Map<String, String> shown = new LinkedHashMap<>();
         sources.forEach((k, v) -> shown.put(k, raylab.scene.Display.escape(v)));
@@ -59,9 +68,30 @@ public final class Submission {
         return ignored;
     }
 
+    /**
+     * Graded files found more than once with no single copy at the release's path: assignment path
+     * to the reason neither copy is graded (such a file is not in {@link #files()}).
+     */
+    public Map<String, String> conflicts() {
+        return conflicts;
+    }
+
+    /** Graded files found more than once (taken or not): assignment path to every copy's path, escaped. */
+    public Map<String, List<String>> duplicates() {
+        return duplicates;
+    }
+
+    /**
+     * Framework sources of the student's own in the submission (never graded): the path they
+     * would have in the project (src/main/java/raylab/math/Vec3.java) to their text.
+     */
+    public Map<String, String> framework() {
+        return framework;
+    }
+
     /** An empty submission with one explanation (for an unreadable input). */
     public static Submission unreadable(String why) {
-        return new Submission(Map.of(), Map.of(), List.of(why));
+        return new Submission(Map.of(), Map.of(), List.of(why), Map.of());
     }
 
     private record Entry(String path, byte[] bytes, long size) {
@@ -128,7 +158,8 @@ public final class Submission {
     private static Submission select(List<Entry> entries, List<Assignment> assignments, List<String> ignored) {
         Map<String, String> files = new LinkedHashMap<>();
         Map<String, String> sources = new LinkedHashMap<>();
-        Map<String, Integer> rank = new LinkedHashMap<>();
+        Map<String, List<Copy>> copies = new LinkedHashMap<>();
+        Map<String, String> framework = new LinkedHashMap<>();
         List<String> editable = new ArrayList<>();
         for (Assignment a : assignments) {
             for (Assignment.StudentFile f : a.files()) {
@@ -157,6 +188,17 @@ public final class Submission {
                     break;
                 }
             }
+            if (target == null && e.bytes != null && e.path.endsWith(".java")) {
+                // A framework file of the student's own: never graded; the grader explains a use of what only it has.
+                String text = new String(e.bytes, StandardCharsets.UTF_8);
+                String pkg = PackageScanner.packageOf(text);
+                if (pkg.startsWith("raylab.") && !e.path.contains("src/test/")) {
+                    String at = "src/main/java/" + pkg.replace('.', '/') + "/" + name;
+                    if (!editable.contains(at)) {
+                        framework.putIfAbsent(at, text);
+                    }
+                }
+            }
             if (target == null) {
                 ignored.add(e.path + ": " + (e.path.endsWith(".java")
                         ? "not a file of the assignments (only " + String.join(", ", editable.stream()
@@ -176,18 +218,41 @@ public final class Submission {
                         + expectedPkg + "'");
                 continue;
             }
-            Integer before = rank.get(target);
-            if (before != null && before >= r) {
-                ignored.add(e.path + ": another copy of " + name + " (" + sources.get(target) + ") was used");
-                continue;
-            }
-            if (before != null) {
-                ignored.add(sources.get(target) + ": another copy of " + name + " (" + e.path + ") was used");
-            }
-            files.put(target, text);
-            sources.put(target, e.path);
-            rank.put(target, r);
+            copies.computeIfAbsent(target, k -> new ArrayList<>()).add(new Copy(e.path, text, r == 3));
         }
-        return new Submission(files, sources, ignored);
+        Map<String, String> conflicts = new LinkedHashMap<>();
+        copies.forEach((target, found) -> {
+            String name = target.substring(target.lastIndexOf('/') + 1);
+            List<Copy> atRelease = found.stream().filter(Copy::atRelease).toList();
+            Copy taken = found.size() == 1 ? found.get(0) : atRelease.size() == 1 ? atRelease.get(0) : null;
+            if (taken == null) {
+                String why = found.size() + " copies of " + name + " (" + String.join(", ", found.stream()
+                        .map(Copy::path).toList()) + ") and " + (atRelease.isEmpty() ? "none" : "more than one")
+                        + " at " + target + ": neither is graded (keep one copy, at " + target + ")";
+                conflicts.put(target, why);
+                ignored.add(why);
+                return;
+            }
+            for (Copy c : found) {
+                if (c != taken) {
+                    ignored.add(c.path + ": another copy of " + name + ", not graded (the copy at "
+                            + taken.path + " is, being at " + target + ")");
+                }
+            }
+            files.put(target, taken.text);
+            sources.put(target, taken.path);
+        });
+                Submission s = new Submission(files, sources, ignored, conflicts);
+        s.framework.putAll(framework);
+        copies.forEach((target, found) -> {
+            if (found.size() > 1) {
+                s.duplicates.put(target, found.stream().map(c -> raylab.scene.Display.escape(c.path)).toList());
+            }
+        });
+        return s;
+    }
+
+    /** One copy of a graded file in the submission; atRelease when at the release's path. */
+    private record Copy(String path, String text, boolean atRelease) {
     }
 }

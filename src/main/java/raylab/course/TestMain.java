@@ -134,11 +134,18 @@ public final class TestMain {
         // JUnit's clock, on wall time, is only a guard against a grader that hangs.
         StudentTime studentTime = System.getProperty("raylab.boundary") != null ? new StudentTime(timeout) : null;
         int junitTimeout = studentTime == null ? timeout : StudentTime.guardSeconds(timeout);
+        // A test whose code has not returned for the bound is stopped and named where it is stuck
+        // (its student frames), long before the per-test timeout.
+        // Behind the grader's process boundary the student's code runs in another JVM: here it is
+        // only named (a stand-in waits for it), and the per-test timeout ends it.
+        Watchdog watchdog = Watchdog.start(Watchdog.bound(0), Watchdog.studentFiles(Path.of("").toAbsolutePath()),
+                stuck -> { }, groupBoundary.stream().allMatch(java.util.Objects::isNull));
         TestExecutionListener listener = new TestExecutionListener() {
             @Override
             public void executionStarted(TestIdentifier t) {
                 if (t.isTest()) {
                     captured.reset();
+                    watchdog.next(Watchdog.bound(0));
                     started.put(t.getUniqueId(), System.nanoTime());
                     if (studentTime != null) {
                         studentTime.start(t.getUniqueId());
@@ -171,6 +178,12 @@ public final class TestMain {
                     case ABORTED -> TestResult.Status.ABORTED;
                     case FAILED -> isTimeout(r) ? TestResult.Status.TIMED_OUT : TestResult.Status.FAILED;
                 };
+                String stuck = watchdog.message();
+                watchdog.next(Watchdog.bound(0));
+                if (stuck != null && s != TestResult.Status.PASSED) {
+                    send(t, TestResult.Status.TIMED_OUT, stuck, ms);
+                    return;
+                }
                 if (s == TestResult.Status.TIMED_OUT && studentTime != null) {
                     // The guard fired: the student's code, if its own time reached the limit; else
                     // the machine or the grader, which is no failure of the student's (no points decided).

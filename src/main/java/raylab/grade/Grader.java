@@ -300,6 +300,10 @@ public final class Grader {
         List<String> notes = new ArrayList<>();
         List<String> missing = a.files().stream().map(Assignment.StudentFile::path)
                 .filter(p -> !sub.files().containsKey(p)).toList();
+        List<String> twice = missing.stream().map(p -> sub.conflicts().get(p)).filter(java.util.Objects::nonNull).toList();
+        if (!twice.isEmpty()) {
+            return zeroed(a, setup, String.join("; ", twice));
+        }
         if (!missing.isEmpty()) {
             String names = String.join(", ", missing.stream().map(p -> p.substring(p.lastIndexOf('/') + 1)).toList());
             String todo = String.join(", ", a.files().stream().flatMap(f -> f.methods().stream()).toList());
@@ -341,6 +345,11 @@ public final class Grader {
                 String file = p.file() == null ? "" : mdir.resolve("src").relativize(p.file()).toString();
                 msg.append("\n  ").append(file.isEmpty() ? "" : "src/main/java/" + file + ":" + p.line() + ": ")
                         .append(p.message());
+            }
+            Map<String, String> graded = new LinkedHashMap<>();
+            files.forEach((k, v) -> graded.put("src/main/java/" + k, v));
+            for (String use : raylab.course.GradedBuild.atGrader(graded, sub.framework(), below)) {
+                msg.append("\n  ").append(use);
             }
             return zeroed(a, setup, msg.toString());
         }

@@ -38,6 +38,16 @@ public final class Submission {
         return intake.ignored();
     }
 
+    /** Graded files found twice with no single copy at the release's path: path to why neither is graded. */
+    public Map<String, String> conflicts() {
+        return intake.conflicts();
+    }
+
+    /** The submission's own framework sources (never graded): project path to text. */
+    public Map<String, String> framework() {
+        return intake.framework();
+    }
+
     /** An empty submission with one explanation (for an unreadable input). */
     static Submission unreadable(String why) {
         return new Submission(raylab.course.Submission.unreadable(why));

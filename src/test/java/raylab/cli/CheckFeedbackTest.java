@@ -38,7 +38,7 @@ class CheckFeedbackTest {
     Path dir;
 
     /** The parts of the project check reads, copied (renders and build output go into the copy). */
-    private static Path copyLayout(Path root, Path to) throws IOException {
+    static Path copyLayout(Path root, Path to) throws IOException {
         for (String d : List.of("assignments", "scenes", "src/test/java", "grader/tests/raylab/cases")) {
             Path from = root.resolve(d);
             try (Stream<Path> s = Files.walk(from)) {

@@ -9,6 +9,8 @@ import java.io.StringWriter;
 import java.nio.charset.StandardCharsets;
 import java.nio.file.Files;
 import java.nio.file.Path;
+import java.util.List;
+import java.util.Map;
 import java.util.zip.ZipEntry;
 import java.util.zip.ZipOutputStream;
 
@@ -57,8 +59,57 @@ class SubmitCheckTest {
         String[] r = run("submit-check");
         assertEquals("0", r[0], "exit status; stderr: " + r[2]);
         for (String f : StudentFault.DEFAULT_FILES) {
-            assertTrue(r[1].contains(f), f + " listed:\n" + r[1]);
+            assertTrue(r[1].lines().anyMatch(l -> l.contains(f) && l.matches(".* finished: its \\d+ visible tests pass")),
+                    f + " listed as finished (the reference passes its tests):\n" + r[1]);
         }
+    }
+
+    @Test
+    void twoCopiesOfAGradedFileAreRefusedNamingBoth() throws Exception {
+        Path zip = dir.resolve("two.zip");
+        String sphere = Files.readString(Path.of("src/main/java/raylab/surface/Sphere.java"));
+        try (OutputStream f = Files.newOutputStream(zip); ZipOutputStream z = new ZipOutputStream(f)) {
+            for (String name : new String[] {"backup/Sphere.java", "Sphere.java"}) {
+                z.putNextEntry(new ZipEntry(name));
+                z.write(sphere.getBytes(StandardCharsets.UTF_8));
+                z.closeEntry();
+            }
+        }
+        String[] r = run("submit-check", zip.toString());
+        assertEquals("1", r[0], "exit status; stdout: " + r[1] + " stderr: " + r[2]);
+        assertTrue(r[1].contains("REFUSED: 2 copies of Sphere.java in the submission: backup/Sphere.java and Sphere.java;"
+                + " the grader would grade neither. Remove all but one (at src/main/java/raylab/surface/Sphere.java)."),
+                r[1]);
+        assertTrue(r[1].lines().anyMatch(l -> l.matches("  sphere +src/main/java/raylab/surface/Sphere.java +NOT GRADED: 2 "
+                + "copies, none at this path \\(see below\\)")), r[1]);
+    }
+
+    /** A file that no longer throws NotImplemented but fails tests is not called finished, and they are named. */
+    @Test
+    void aWrittenFileWithFailingTestsIsNotFinished() throws Exception {
+        Path root = Path.of("").toAbsolutePath();
+        Path copy = CheckFeedbackTest.copyLayout(root, dir.resolve("project"));
+        String buggy = Files.readString(root.resolve("src/test/resources/submissions/bugs2/Sphere.java"));
+        assertTrue(buggy.contains("BUG: the far root is never tried"), "the planted bug");
+        Path sphereFile = copy.resolve("src/main/java/raylab/surface/Sphere.java");
+        Files.createDirectories(sphereFile.getParent());
+        Files.writeString(sphereFile, buggy);
+        Path overlay = dir.resolve("student-classes");
+        raylab.course.JavaBuild.Result compiled = raylab.course.MilestoneBuild.compileOverlay(
+                Map.of("raylab/surface/Sphere.java", buggy), dir.resolve("student-src"),
+                raylab.course.JavaBuild.ownClassPath(), overlay);
+        assertTrue(compiled.success(), compiled.errors().toString());
+        raylab.course.Assignment sphere = raylab.course.Assignments.load(copy).byId("sphere").orElseThrow();
+
+        StringWriter text = new StringWriter();
+        PrintWriter w = new PrintWriter(text, true);
+        SubmitCheckCommand.project(w, copy, List.of(sphere), List.of(overlay));
+        String out = text.toString();
+        assertTrue(out.lines().anyMatch(l -> l.matches("  sphere +src/main/java/raylab/surface/Sphere.java +NOT FINISHED: "
+                + "\\d+ of \\d+ visible tests fail \\(below\\)")), "not finished:\n" + out);
+        assertTrue(out.contains("  FAIL \"a ray starting inside hits the far side (the farther root), normal outward\""),
+                "the failing test named as in the handout:\n" + out);
+        assertTrue(!out.contains("written"), out);
     }
 
     @Test

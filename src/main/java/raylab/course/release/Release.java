@@ -129,6 +129,11 @@ public final class Release {
             // Visible data cases run in ./raylab check, with the grader's case checker.
             out.put(CASE_CHECK_STARTER, Files.readAllBytes(root.resolve(CASE_CHECK)));
         }
+        // The released framework's hashes and members: check and submit-check name what the grader will not have.
+        Set<String> studentFiles = new HashSet<>();
+        assignments.all().forEach(a -> a.files().forEach(f -> studentFiles.add(f.path())));
+        out.put(raylab.course.GradedBuild.MANIFEST, raylab.course.GradedBuild.manifestText(out, studentFiles,
+                raylab.course.JavaBuild.ownClassPath()).getBytes(StandardCharsets.UTF_8));
         out.put("README.md", StarterReadme.render(root, spec.readmeTemplate(), assignments)
                 .getBytes(StandardCharsets.UTF_8));
         Set<String> exec = new HashSet<>();
