@@ -93,6 +93,21 @@ public final class Assignments {
                 throw new IOException(a.folder() + "/assignment.json: points is " + a.points()
                         + " but visiblePoints + hiddenPoints + scene points + case points add up to " + sum);
             }
+            java.util.Set<String> hiddenClasses = new java.util.HashSet<>();
+            for (String h : a.tests().hidden()) {
+                hiddenClasses.add(Path.of(h).getFileName().toString().replaceFirst("\\.java$", ""));
+            }
+            for (java.util.Map.Entry<String, Double> w : a.tests().hiddenWeights().entrySet()) {
+                String cls = w.getKey().contains(".") ? w.getKey().substring(0, w.getKey().indexOf('.')) : w.getKey();
+                if (!hiddenClasses.contains(cls)) {
+                    throw new IOException(a.folder() + "/assignment.json: tests.hiddenWeights names \"" + w.getKey()
+                            + "\", which is not a class of tests.hidden (write Class or Class.method, simple names)");
+                }
+                if (w.getValue() == null || !(w.getValue() > 0) || w.getValue().isInfinite()) {
+                    throw new IOException(a.folder() + "/assignment.json: tests.hiddenWeights." + w.getKey()
+                            + " must be a number > 0, got " + w.getValue());
+                }
+            }
             for (String r : a.requires()) {
                 if (!ids.contains(r)) {
                     throw new IOException(a.folder() + "/assignment.json: requires unknown milestone '" + r + "'");

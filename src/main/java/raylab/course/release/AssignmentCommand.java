@@ -36,16 +36,16 @@ import raylab.render.PngFiles;
 import raylab.scene.SceneLoader;
 
 /**
- * {@code raylab assignment add-scene|add-case}: grows a milestone in one command (instructors;
+ * {@code raylab assignment add-scene|add-case|add-test} ({@link AddTestCommand}): grows a milestone in one command (instructors;
  * the starter leaves this class out). Each command changes {@code assignment.json} (the item and
  * the milestone's total), rewrites the handout's grading table from it, and shows what students
  * will see; every file is written to a temporary name and moved, and nothing is changed when a
  * step fails.
  */
 @Command(name = "assignment", mixinStandardHelpOptions = true,
-        description = {"Add a graded scene or data cases to a milestone (instructors).",
+        description = {"Add a graded scene, data cases or a hidden test to a milestone (instructors).",
             "Updates assignment.json, the milestone's points and its handout's grading table. See docs/instructors.md."},
-        subcommands = {AssignmentCommand.AddScene.class, AssignmentCommand.AddCase.class})
+        subcommands = {AssignmentCommand.AddScene.class, AssignmentCommand.AddCase.class, AddTestCommand.class})
 public final class AssignmentCommand implements Callable<Integer> {
     @Spec
     CommandSpec spec;
