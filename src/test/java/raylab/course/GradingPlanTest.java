@@ -97,6 +97,21 @@ class GradingPlanTest {
                 e.getMessage());
     }
 
+    @Test
+    void twoMilestonesThatListOneFileAreRefusedWithTheRecipe(@TempDir Path dir) throws IOException {
+        for (String id : List.of("ambient", "lambert")) {
+            Path folder = Files.createDirectories(dir.resolve("assignments/0" + (id.equals("ambient") ? 1 : 2) + "-" + id));
+            Files.writeString(folder.resolve("assignment.json"), "{\"id\": \"" + id + "\", \"order\": "
+                    + (id.equals("ambient") ? 1 : 2) + ", \"title\": \"T\", \"points\": 0, \"files\": [{\"path\":"
+                    + " \"src/main/java/raylab/shading/Shading.java\", \"methods\": [\"Shading.shade\"]}],"
+                    + " \"tests\": {\"tag\": \"" + id + "\", \"visible\": [], \"visiblePoints\": 0, \"hiddenPoints\": 0}}");
+        }
+        IOException e = org.junit.jupiter.api.Assertions.assertThrows(IOException.class, () -> Assignments.load(dir));
+        assertEquals("assignments/02-lambert/assignment.json: src/main/java/raylab/shading/Shading.java is a file of"
+                + " milestone ambient already; a file belongs to one milestone: put the methods of lambert in a file of"
+                + " their own (docs/instructors.md, \"Splitting a topic over milestones\")", e.getMessage());
+    }
+
     private static List<Long> boxed(long[] a) {
         List<Long> out = new ArrayList<>();
         for (long v : a) {
