@@ -18,8 +18,9 @@ import raylab.scene.SceneException;
  * first draw of every one of several grading seeds, as {@code VariantPointTest} checks the
  * bundled scenes.
  *
- * <p>The default: a perspective camera orbits by ±15° of yaw and ±6° of pitch and moves ±10 %
- * closer or farther; an orthographic one pans by up to 6 whole pixels; lights, when there are,
+ * <p>The default: a perspective camera given by {@code lookAt} orbits by ±15° of yaw and ±6° of
+ * pitch and moves ±10 % closer or farther; an orthographic one given by {@code viewDirection}
+ * pans by up to 6 whole pixels (other cameras stay); lights, when there are,
  * move by up to a tenth of the camera's distance to its look-at point sideways (a twentieth up
  * and down) and change intensity by ±15 %. Surfaces never move: which ones rest on others is the
  * scene's own knowledge ({@code "placement"} by hand, docs/assignment-format.md).
@@ -34,11 +35,14 @@ public final class VariantProposal {
     public static ObjectNode defaultSpec(JsonNode scene) {
         ObjectNode spec = JSON.createObjectNode();
         JsonNode camera = scene.path("camera");
-        ObjectNode c = spec.putObject("camera");
+        // The grader orbits a perspective camera about its lookAt and pans an orthographic one
+        // along its viewDirection (SceneVariants): a camera given the other way stays.
         if (camera.path("type").asText("perspective").equals("orthographic")) {
-            c.put("pan", 6);
-        } else {
-            c.put("yaw", 15).put("pitch", 6).put("distance", 0.1);
+            if (camera.has("viewDirection")) {
+                spec.putObject("camera").put("pan", 6);
+            }
+        } else if (camera.has("lookAt")) {
+            spec.putObject("camera").put("yaw", 15).put("pitch", 6).put("distance", 0.1);
         }
         if (scene.path("lights").size() > 0) {
             double d = distance(camera);

@@ -285,6 +285,13 @@ public final class AssignmentCommand implements Callable<Integer> {
                     return given;
                 }
                 com.fasterxml.jackson.databind.node.ObjectNode spec = VariantProposal.defaultSpec(published);
+                if (spec.isEmpty()) {
+                    throw new UserError("WARNING: the default variant has nothing to move in " + scene.getFileName()
+                            + " (no lights, and a camera without " + (published.path("camera").path("type").asText("")
+                                    .equals("orthographic") ? "viewDirection" : "lookAt") + "), so it would be graded as"
+                            + " published and a copied reference would score; nothing was changed: give a --variant with"
+                            + " \"placement\" (docs/assignment-format.md)", 1);
+                }
                 String first = "";
                 for (int k = 0; k < 3; k++) {
                     VariantProposal.Checked c = VariantProposal.check(published, scene, spec, sceneName, checkSeeds, seed0);
@@ -305,6 +312,13 @@ public final class AssignmentCommand implements Callable<Integer> {
                         + " nothing was changed: give a --variant that keeps what it tests (docs/assignment-format.md)", 1);
             } catch (VariantSpec.Invalid e) {
                 throw UserError.badInput("--variant: " + e.getMessage());
+            } catch (RuntimeException e) {
+                if (e instanceof UserError) {
+                    throw e;
+                }
+                // The grader could not vary this camera this way (a perspective camera without lookAt, ...).
+                throw UserError.badInput("--variant: the grader cannot vary " + scene.getFileName() + " this way: "
+                        + e + " (docs/assignment-format.md, \"Graded scene variants\")");
             } catch (raylab.scene.SceneException e) {
                 throw UserError.badInput(e.getMessage());
             }

@@ -127,6 +127,14 @@ class AddSceneVariantTest {
         String notJson = run(2, "assignment", "add-scene", "sphere", s.toString(), "--points", "1", "--variant", "{camera",
                 "--root", course.toString());
         assertTrue(notJson.contains("--variant: not valid JSON"), notJson);
+        Path fixed = scene("fixed.json", UNLIT.replace("\"lookAt\": [0, 0, 0]", "\"viewDirection\": [0, 0, -1]"));
+        String nothing = run(1, "assignment", "add-scene", "sphere", fixed.toString(), "--points", "1", "--root",
+                course.toString());
+        assertTrue(nothing.contains("WARNING: the default variant has nothing to move in fixed.json (no lights, and a"
+                + " camera without lookAt), so it would be graded as published"), nothing);
+        String cannot = run(2, "assignment", "add-scene", "sphere", fixed.toString(), "--points", "1", "--variant",
+                "{\"camera\": {\"yaw\": 10}}", "--root", course.toString());
+        assertTrue(cannot.strip().startsWith("raylab: --variant: ") && cannot.strip().lines().count() == 1, cannot);
         assertArrayEquals(before, json("01-sphere"), "assignment.json untouched");
         assertFalse(Files.exists(course.resolve("scenes/refused.json")), "the scene was not copied");
         assertFalse(Files.exists(course.resolve("scenes/reference/refused.png")), "no reference was written");
