@@ -1,0 +1,142 @@
+package raylab.scene;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertNotEquals;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import java.awt.image.BufferedImage;
+import java.io.File;
+import java.io.IOException;
+import java.nio.charset.StandardCharsets;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.util.ArrayList;
+import java.util.List;
+import java.util.concurrent.TimeUnit;
+
+import javax.imageio.ImageIO;
+
+import org.junit.jupiter.api.BeforeAll;
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.io.TempDir;
+
+import com.fasterxml.jackson.databind.JsonNode;
+import com.fasterxml.jackson.databind.ObjectMapper;
+
+import raylab.course.JavaBuild;
+
+/**
+ * A surface type added the way an instructor adds one, from test resources only
+ * ({@code src/test/resources/extension/plane/}: {@code Plane.java} with solution markers,
+ * {@code PlaneType.java}, its {@code META-INF/services} line): compiled beside raylab, without
+ * any framework file edited, the scene format knows {@code "plane"} (its keys checked, its
+ * errors with file:line:col), {@code raylab render} draws it, and a graded scene's variant moves
+ * it ({@code raylab variant}). Without the registration on the class path the type is unknown.
+ * Each run is a child JVM whose class path is the extension's classes and raylab's.
+ */
+class SurfaceExtensionTest {
+    @TempDir
+    static Path dir;
+    static Path classes;
+    static Path root;
+
+    private static final String SCENE = """
+            {
+              "image": {"width": 32, "height": 24},
+              "camera": {"type": "perspective", "eye": [0, 1, 6], "lookAt": [0, 0, 0], "up": [0, 1, 0], "fov": 50},
+              "background": [0, 0, 1],
+              "materials": {"red": {"type": "flat", "color": [1, 0, 0]}, "n": {"type": "normals"}},
+              "surfaces": [
+                {"type": "plane", "name": "floor", "point": [0, -1, 0], "normal": [0, 1, 0], "material": "red"},
+                {"type": "sphere", "name": "ball", "center": [0, 0, 0], "radius": 0.8, "material": "n"}
+              ]
+            }
+            """;
+
+    private static final String ASSIGNMENT = """
+            {
+              "id": "plane",
+              "order": 7,
+              "title": "Planes",
+              "points": 2,
+              "files": [{"path": "src/main/java/raylab/surface/Plane.java", "methods": ["Plane.intersect"]}],
+              "tests": {"tag": "plane", "visible": [], "visiblePoints": 0, "hiddenPoints": 0},
+              "scenes": [
+                {"scene": "scenes/plane.json", "reference": "scenes/reference/plane.png", "points": 2, "tolerance": 0.003,
+                 "variant": {"camera": {"yaw": 10, "pitch": 4, "distance": 0.05},
+                             "placement": [{"objects": ["floor"], "move": [0, 0.2, 0]}]}}
+              ]
+            }
+            """;
+
+    @BeforeAll
+    static void compileTheExtension() throws IOException {
+        Path ext = Path.of("src/test/resources/extension/plane").toAbsolutePath();
+        classes = dir.resolve("classes");
+        JavaBuild.Result r = JavaBuild.compile(JavaBuild.sourcesUnder(ext.resolve("src/main/java")),
+                JavaBuild.ownClassPath(), classes);
+        assertTrue(r.success(), "the extension compiles: " + r.errors());
+        Path services = classes.resolve("META-INF/services/raylab.scene.SurfaceType");
+        Files.createDirectories(services.getParent());
+        Files.copy(ext.resolve("src/main/resources/META-INF/services/raylab.scene.SurfaceType"), services);
+        root = dir.resolve("course");
+        Files.createDirectories(root.resolve("scenes"));
+        Files.createDirectories(root.resolve("assignments/07-plane"));
+        Files.writeString(root.resolve("scenes/plane.json"), SCENE);
+        Files.writeString(root.resolve("assignments/07-plane/assignment.json"), ASSIGNMENT);
+    }
+
+    record Ran(int status, String out, String err) {
+    }
+
+    private static Ran raylab(boolean withExtension, String... args) throws IOException, InterruptedException {
+        List<String> cmd = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
+                "-cp", (withExtension ? classes + File.pathSeparator : "") + System.getProperty("java.class.path"),
+                "raylab.cli.Main"));
+        cmd.addAll(List.of(args));
+        Path out = dir.resolve("out.txt");
+        Path err = dir.resolve("err.txt");
+        Process p = new ProcessBuilder(cmd).directory(root.toFile()).redirectOutput(out.toFile())
+                .redirectError(err.toFile()).start();
+        assertTrue(p.waitFor(300, TimeUnit.SECONDS), "raylab " + String.join(" ", args) + " ended");
+        return new Ran(p.exitValue(), Files.readString(out, StandardCharsets.UTF_8), Files.readString(err, StandardCharsets.UTF_8));
+    }
+
+    @Test
+    void renderDrawsThePlaneAndItsKeysAreChecked() throws Exception {
+        Ran r = raylab(true, "render", "scenes/plane.json", "-o", dir.resolve("plane.png").toString(), "--quiet");
+        assertEquals(0, r.status(), r.out() + r.err());
+        BufferedImage img = ImageIO.read(dir.resolve("plane.png").toFile());
+        assertEquals(0xff0000, img.getRGB(16, 23) & 0xffffff, "the floor plane (flat red) at the bottom centre");
+        assertEquals(0x0000ff, img.getRGB(16, 0) & 0xffffff, "the background (blue) at the top centre");
+
+        Files.writeString(dir.resolve("bad.json"), SCENE.replace("\"normal\": [0, 1, 0]", "\"normal\": [0, 0, 0]"));
+        r = raylab(true, "render", dir.resolve("bad.json").toString(), "-o", dir.resolve("bad.png").toString());
+        assertEquals(2, r.status(), r.out() + r.err());
+        assertTrue(r.err().contains("bad.json:7:") && r.err().contains("a plane's normal must not be [0, 0, 0]"), r.err());
+        Files.writeString(dir.resolve("typo.json"), SCENE.replace("\"point\": [0, -1, 0]", "\"pont\": [0, -1, 0]"));
+        r = raylab(true, "render", dir.resolve("typo.json").toString(), "-o", dir.resolve("typo.png").toString());
+        assertEquals(2, r.status(), r.out() + r.err());
+        assertTrue(r.err().contains("unknown key \"pont\" in a plane (did you mean \"point\"?)"), r.err());
+    }
+
+    @Test
+    void aVariantMovesThePlane() throws Exception {
+        Ran r = raylab(true, "variant", "scenes/plane.json", "--seed", "7", "--root", root.toString());
+        assertEquals(0, r.status(), r.out() + r.err());
+        JsonNode v = new ObjectMapper().readTree(r.out().substring(r.out().indexOf('{')));
+        JsonNode floor = v.get("surfaces").get(0);
+        assertEquals("plane", floor.get("type").asText());
+        double y = floor.get("point").get(1).asDouble();
+        assertTrue(y != -1 && Math.abs(y + 1) <= 0.2, "expected the floor moved within ±0.2 in y, got y = " + y + ": " + r.out());
+        assertEquals(0, floor.get("point").get(0).asDouble(), 0, "no move in x (bound 0)");
+    }
+
+    @Test
+    void withoutItsRegistrationThePlaneIsUnknown() throws Exception {
+        Ran r = raylab(false, "render", "scenes/plane.json", "-o", dir.resolve("none.png").toString());
+        assertEquals(2, r.status(), r.out() + r.err());
+        assertTrue(r.err().contains("unknown surface type \"plane\""), r.err());
+        assertNotEquals(true, Files.exists(dir.resolve("none.png")), "no image written");
+    }
+}
