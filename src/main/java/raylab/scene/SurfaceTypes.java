@@ -27,6 +27,27 @@ public final class SurfaceTypes {
         return EXTENSIONS;
     }
 
+    /**
+     * One surface of a registered type from its scene-format JSON without {@code "material"}
+     * (the surface of a data case), built by the scene loader with a normals material.
+     *
+     * @throws SceneException for an unknown type or a bad key, with the loader's message
+     */
+    public static raylab.surface.Surface build(com.fasterxml.jackson.databind.JsonNode surface) throws SceneException {
+        com.fasterxml.jackson.databind.node.ObjectNode s = surface.deepCopy();
+        s.put("material", "case material");
+        String scene = "{\"image\": {\"width\": 1, \"height\": 1}, \"camera\": {\"type\": \"perspective\","
+                + " \"eye\": [0, 0, 1], \"lookAt\": [0, 0, 0], \"up\": [0, 1, 0], \"fov\": 40},"
+                + " \"materials\": {\"case material\": {\"type\": \"normals\"}}, \"surfaces\": [" + s + "]}";
+        try {
+            return SceneLoader.parse(scene, java.nio.file.Path.of("data case")).surfaces.get(0);
+        } catch (SceneException e) {
+            // Said of the surface itself: "normal: ...", "missing required key ...".
+            throw new SceneException(String.valueOf(e.getMessage())
+                    .replaceFirst("^(?:data case\\S*: )?\\$\\.surfaces\\[0\\](?:\\.|: )", ""), e);
+        }
+    }
+
     private static Map<String, SurfaceType> load() {
         Map<String, SurfaceType> out = new LinkedHashMap<>();
         List<String> problems = new ArrayList<>();

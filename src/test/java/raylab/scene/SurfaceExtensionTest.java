@@ -58,14 +58,48 @@ class SurfaceExtensionTest {
               "id": "plane",
               "order": 7,
               "title": "Planes",
-              "points": 2,
+              "points": 4,
               "files": [{"path": "src/main/java/raylab/surface/Plane.java", "methods": ["Plane.intersect"]}],
               "tests": {"tag": "plane", "visible": [], "visiblePoints": 0, "hiddenPoints": 0},
               "scenes": [
                 {"scene": "scenes/plane.json", "reference": "scenes/reference/plane.png", "points": 2, "tolerance": 0.003,
                  "variant": {"camera": {"yaw": 10, "pitch": 4, "distance": 0.05},
                              "placement": [{"objects": ["floor"], "move": [0, 0.2, 0]}]}}
-              ]
+              ],
+              "cases": ["cases/plane.json"]
+            }
+            """;
+
+    private static final String CASES = """
+            [
+              {"name": "a ray straight down hits the floor at t = 4", "points": 1,
+               "surface": {"type": "plane", "point": [0, -1, 0], "normal": [0, 1, 0]},
+               "ray": {"p": [0, 3, 0], "d": [0, -1, 0]}, "expect": {"hit": true, "t": 4, "point": [0, -1, 0], "normal": [0, 1, 0]}},
+              {"name": "a ray parallel to the floor misses", "points": 1,
+               "surface": {"type": "plane", "point": [0, -1, 0], "normal": [0, 1, 0]},
+               "ray": {"p": [0, 0, 0], "d": [1, 0, 0]}, "expect": {"hit": false}}
+            ]
+            """;
+
+    /** Runs the milestone's data cases as the grader's case test does (DataCases, CaseCheck). */
+    private static final String PROBE = """
+            public class CaseProbe {
+                public static void main(String[] args) throws Exception {
+                    java.nio.file.Path root = java.nio.file.Path.of(args[0]);
+                    raylab.course.Assignment a = raylab.course.Assignments.load(root).byId("plane").orElseThrow();
+                    try {
+                        for (raylab.grade.DataCases.Case c : raylab.grade.DataCases.load(root, a)) {
+                            try {
+                                raylab.cases.CaseCheck.check(c.json());
+                                System.out.println("passed: " + c.name());
+                            } catch (AssertionError e) {
+                                System.out.println("failed: " + c.name() + ": " + e.getMessage().split("\\n")[0]);
+                            }
+                        }
+                    } catch (java.io.IOException e) {
+                        System.out.println("refused: " + e.getMessage());
+                    }
+                }
             }
             """;
 
@@ -84,15 +118,33 @@ class SurfaceExtensionTest {
         Files.createDirectories(root.resolve("assignments/07-plane"));
         Files.writeString(root.resolve("scenes/plane.json"), SCENE);
         Files.writeString(root.resolve("assignments/07-plane/assignment.json"), ASSIGNMENT);
+        Files.createDirectories(root.resolve("assignments/07-plane/cases"));
+        Files.writeString(root.resolve("assignments/07-plane/cases/plane.json"), CASES);
+        // The probe, and a buggy plane (t with the wrong sign) compiled apart, put first on a class path.
+        Path probe = Files.createDirectories(dir.resolve("probe-src")).resolve("CaseProbe.java");
+        Files.writeString(probe, PROBE);
+        List<Path> cp = new ArrayList<>(List.of(classes));
+        cp.addAll(JavaBuild.ownClassPath());
+        JavaBuild.Result pr = JavaBuild.compile(List.of(probe, Path.of("grader/tests/raylab/cases/CaseCheck.java").toAbsolutePath()), cp, classes);
+        assertTrue(pr.success(), () -> "the probe compiles: " + pr.errors());
+        Path planeSrc = ext.resolve("src/main/java/raylab/surface/Plane.java");
+        String reference = Files.readString(planeSrc);
+        assertTrue(reference.contains("point.minus(ray.p)"));
+        Path buggySrc = Files.createDirectories(dir.resolve("buggy-src/raylab/surface")).resolve("Plane.java");
+        Files.writeString(buggySrc, reference.replace("point.minus(ray.p)", "ray.p.minus(point)"));
+        assertTrue(JavaBuild.compile(List.of(buggySrc), cp, dir.resolve("buggy")).success(), "the buggy plane compiles");
     }
 
     record Ran(int status, String out, String err) {
     }
 
     private static Ran raylab(boolean withExtension, String... args) throws IOException, InterruptedException {
+        return java(withExtension ? classes + File.pathSeparator : "", "raylab.cli.Main", args);
+    }
+
+    private static Ran java(String before, String main, String... args) throws IOException, InterruptedException {
         List<String> cmd = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
-                "-cp", (withExtension ? classes + File.pathSeparator : "") + System.getProperty("java.class.path"),
-                "raylab.cli.Main"));
+                "-cp", before + System.getProperty("java.class.path"), main));
         cmd.addAll(List.of(args));
         Path out = dir.resolve("out.txt");
         Path err = dir.resolve("err.txt");
@@ -138,5 +190,32 @@ class SurfaceExtensionTest {
         assertEquals(2, r.status(), r.out() + r.err());
         assertTrue(r.err().contains("unknown surface type \"plane\""), r.err());
         assertNotEquals(true, Files.exists(dir.resolve("none.png")), "no image written");
+    }
+
+    @Test
+    void dataCasesOfThePlaneRunAndCatchABuggyPlane() throws Exception {
+        Ran r = java(classes + File.pathSeparator, "CaseProbe", root.toString());
+        assertEquals(0, r.status(), r.out() + r.err());
+        assertEquals(List.of("passed: a ray straight down hits the floor at t = 4", "passed: a ray parallel to the floor misses"),
+                r.out().lines().toList(), r.err());
+        r = java(dir.resolve("buggy") + File.pathSeparator + classes + File.pathSeparator, "CaseProbe", root.toString());
+        assertEquals(0, r.status(), r.out() + r.err());
+        List<String> lines = r.out().lines().toList();
+        assertEquals(2, lines.size(), r.out() + r.err());
+        assertTrue(lines.get(0).startsWith("failed: a ray straight down hits the floor at t = 4: "), lines.get(0));
+        assertEquals("passed: a ray parallel to the floor misses", lines.get(1));
+
+        Path cases = root.resolve("assignments/07-plane/cases/plane.json");
+        String noNormal = CASES.replace(", \"normal\": [0, 1, 0]},\n   \"ray\": {\"p\": [0, 0, 0]",
+                "},\n   \"ray\": {\"p\": [0, 0, 0]");
+        assertNotEquals(CASES, noNormal, "the second case lost its normal");
+        Files.writeString(cases, noNormal);
+        try {
+            r = java(classes + File.pathSeparator, "CaseProbe", root.toString());
+        } finally {
+            Files.writeString(cases, CASES);
+        }
+        assertTrue(r.out().startsWith("refused: ") && r.out().contains("case 'a ray parallel to the floor misses': \"surface\": missing required key \"normal\" in a plane"),
+                r.out() + r.err());
     }
 }
