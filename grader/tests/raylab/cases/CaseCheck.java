@@ -97,8 +97,20 @@ public final class CaseCheck {
             case "sphere" -> new Sphere(vec(s.get("center")), s.get("radius").asDouble(), m, "sphere");
             case "box" -> new Box(vec(s.get("min")), vec(s.get("max")), m, "box");
             case "triangle" -> new Triangle(vec(s.get("a")), vec(s.get("b")), vec(s.get("c")), m, "triangle");
-            default -> throw new IllegalArgumentException("unknown surface type '" + type + "'");
+            default -> extension(s);
         };
+    }
+
+    /** A surface of a type registered on the class path (raylab.scene.SurfaceType), built by the scene loader. */
+    private static Surface extension(JsonNode s) {
+        if (!raylab.scene.SurfaceTypes.extensions().containsKey(s.path("type").asText())) {
+            throw new IllegalArgumentException("unknown surface type '" + s.path("type").asText() + "'");
+        }
+        try {
+            return raylab.scene.SurfaceTypes.build(s);
+        } catch (raylab.scene.SceneException e) {
+            throw new IllegalArgumentException(e.getMessage());
+        }
     }
 
     static Vec3 vec(JsonNode a) {

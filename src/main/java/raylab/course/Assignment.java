@@ -63,16 +63,41 @@ public record Assignment(
      * @param visiblePoints    points shared by the visible tests
      * @param hiddenPoints     points shared by the hidden tests
      * @param hiddenVisibility Gradescope visibility of hidden tests: hidden, after_due_date, ...
+     * @param hiddenWeights    optional: a hidden test class's (simple name) or method's
+     *                         ({@code Class.method}) weight in the split of {@code hiddenPoints};
+     *                         every other hidden test method weighs 1
      */
     public record Tests(@JsonProperty(required = true) String tag,
             @JsonProperty(required = true) List<String> visible,
             List<String> hidden,
             int visiblePoints,
             int hiddenPoints,
-            String hiddenVisibility) {
+            String hiddenVisibility,
+            java.util.Map<String, Double> hiddenWeights) {
         public Tests {
             hidden = hidden == null ? List.of() : List.copyOf(hidden);
             hiddenVisibility = hiddenVisibility == null ? "after_due_date" : hiddenVisibility;
+            hiddenWeights = hiddenWeights == null ? java.util.Map.of()
+                    : java.util.Collections.unmodifiableMap(new java.util.LinkedHashMap<>(hiddenWeights));
+        }
+
+        /** Hidden points shared equally among the hidden test methods. */
+        public Tests(String tag, List<String> visible, List<String> hidden, int visiblePoints, int hiddenPoints,
+                String hiddenVisibility) {
+            this(tag, visible, hidden, visiblePoints, hiddenPoints, hiddenVisibility, null);
+        }
+
+        /**
+         * The weight of a hidden test method: {@code hiddenWeights} of "Class.method", else of
+         * "Class" (simple names), else 1.
+         */
+        public double hiddenWeight(String className, String method) {
+            String simple = className.substring(className.lastIndexOf('.') + 1);
+            Double w = hiddenWeights.get(simple + "." + method);
+            if (w == null) {
+                w = hiddenWeights.get(simple);
+            }
+            return w == null ? 1 : w;
         }
     }
 

@@ -6,6 +6,7 @@ import java.nio.file.Path;
 import java.util.ArrayList;
 import java.util.Comparator;
 import java.util.List;
+import java.util.Map;
 import java.util.Optional;
 import java.util.stream.Stream;
 
@@ -82,6 +83,17 @@ public final class Assignments {
 
     private static void checkConsistent(Path projectRoot, List<Assignment> list) throws IOException {
         List<String> ids = list.stream().map(Assignment::id).toList();
+        Map<String, String> ownerOfFile = new java.util.HashMap<>();
+        for (Assignment a : list) {
+            for (Assignment.StudentFile f : a.files()) {
+                String other = ownerOfFile.putIfAbsent(f.path(), a.id());
+                if (other != null && !other.equals(a.id())) {
+                    throw new IOException(a.folder() + "/assignment.json: " + f.path() + " is a file of milestone "
+                            + other + " already; a file belongs to one milestone: put the methods of " + a.id()
+                            + " in a file of their own (docs/instructors.md, \"Splitting a topic over milestones\")");
+                }
+            }
+        }
         for (Assignment a : list) {
             if (ids.indexOf(a.id()) != ids.lastIndexOf(a.id())) {
                 throw new IOException("two assignments have the id '" + a.id() + "'");
@@ -92,6 +104,21 @@ public final class Assignments {
             if (Math.abs(sum - a.points()) > 1e-9) {
                 throw new IOException(a.folder() + "/assignment.json: points is " + a.points()
                         + " but visiblePoints + hiddenPoints + scene points + case points add up to " + sum);
+            }
+            java.util.Set<String> hiddenClasses = new java.util.HashSet<>();
+            for (String h : a.tests().hidden()) {
+                hiddenClasses.add(Path.of(h).getFileName().toString().replaceFirst("\\.java$", ""));
+            }
+            for (java.util.Map.Entry<String, Double> w : a.tests().hiddenWeights().entrySet()) {
+                String cls = w.getKey().contains(".") ? w.getKey().substring(0, w.getKey().indexOf('.')) : w.getKey();
+                if (!hiddenClasses.contains(cls)) {
+                    throw new IOException(a.folder() + "/assignment.json: tests.hiddenWeights names \"" + w.getKey()
+                            + "\", which is not a class of tests.hidden (write Class or Class.method, simple names)");
+                }
+                if (w.getValue() == null || !(w.getValue() > 0) || w.getValue().isInfinite()) {
+                    throw new IOException(a.folder() + "/assignment.json: tests.hiddenWeights." + w.getKey()
+                            + " must be a number > 0, got " + w.getValue());
+                }
             }
             for (String r : a.requires()) {
                 if (!ids.contains(r)) {

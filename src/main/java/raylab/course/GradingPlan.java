@@ -122,7 +122,11 @@ public final class GradingPlan {
                 // The starter: hidden tests are not there, their points are.
                 hidden.add(new Item(Kind.TEST, "hidden", "hidden tests", "", 100L * a.tests().hiddenPoints(), 0));
             } else {
-                long[] hs = share(100L * a.tests().hiddenPoints(), ht.size());
+                double[] weights = new double[ht.size()];
+                for (int i = 0; i < ht.size(); i++) {
+                    weights[i] = a.tests().hiddenWeight(ht.get(i).className(), ht.get(i).method());
+                }
+                long[] hs = share(100L * a.tests().hiddenPoints(), weights);
                 for (int i = 0; i < ht.size(); i++) {
                     hidden.add(new Item(Kind.TEST, ht.get(i).key(), ht.get(i).displayName(),
                             fileOf(a.tests().hidden(), ht.get(i).className()), hs[i], 0));
@@ -255,6 +259,32 @@ public final class GradingPlan {
         long rest = cents - base * n;
         for (int i = 0; i < n; i++) {
             out[i] = base + (i < rest ? 1 : 0);
+        }
+        return out;
+    }
+
+    /**
+     * Splits {@code cents} by weight in whole cents: each gets the floor of its exact share, the
+     * cents left over go one each to the first (in order); equal weights give {@link #share(long, int)}.
+     */
+    public static long[] share(long cents, double[] weights) {
+        long[] out = new long[weights.length];
+        double total = 0;
+        for (double w : weights) {
+            total += w;
+        }
+        if (weights.length == 0 || !(total > 0)) {
+            return out;
+        }
+        long given = 0;
+        for (int i = 0; i < weights.length; i++) {
+            // A hair above the exact share, so that 100 * 1/3 * 3 does not floor to 99.
+            out[i] = (long) Math.floor(cents * (weights[i] / total) + 1e-9);
+            given += out[i];
+        }
+        for (int i = 0; given < cents; i = (i + 1) % weights.length) {
+            out[i]++;
+            given++;
         }
         return out;
     }

@@ -110,8 +110,17 @@ public final class DataCases {
             throw new IOException(where + ": \"visibility\" must be one of " + VISIBILITIES);
         }
         JsonNode s = c.get("surface");
-        if (s == null || !SURFACES.contains(s.path("type").asText())) {
-            throw new IOException(where + ": \"surface\" needs a \"type\" of " + SURFACES);
+        if (s != null && raylab.scene.SurfaceTypes.extensions().containsKey(s.path("type").asText())) {
+            // A registered surface type: its scene-format keys, checked by the scene loader.
+            try {
+                raylab.scene.SurfaceTypes.build(s);
+            } catch (raylab.scene.SceneException e) {
+                throw new IOException(where + ": \"surface\": " + e.getMessage());
+            }
+        } else if (s == null || !SURFACES.contains(s.path("type").asText())) {
+            java.util.List<String> types = new java.util.ArrayList<>(java.util.List.of("sphere", "box", "triangle"));
+            types.addAll(raylab.scene.SurfaceTypes.extensions().keySet());
+            throw new IOException(where + ": \"surface\" needs a \"type\" of " + types);
         }
         switch (s.get("type").asText()) {
             case "sphere" -> {
@@ -124,10 +133,13 @@ public final class DataCases {
                 vec(s, "min", where);
                 vec(s, "max", where);
             }
-            default -> {
+            case "triangle" -> {
                 vec(s, "a", where);
                 vec(s, "b", where);
                 vec(s, "c", where);
+            }
+            default -> {
+                // a registered surface type, checked above
             }
         }
         JsonNode r = c.get("ray");

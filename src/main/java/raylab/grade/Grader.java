@@ -856,7 +856,12 @@ public final class Grader {
         List<String> visibleKeys = keys.stream().filter(k -> kindOf(a, groups.get(k).get(0).className()) == Kind.VISIBLE).toList();
         List<String> hiddenKeys = keys.stream().filter(k -> kindOf(a, groups.get(k).get(0).className()) == Kind.HIDDEN).toList();
         long[] vs = GradingPlan.share(100L * a.tests().visiblePoints(), visibleKeys.size());
-        long[] hs = GradingPlan.share(100L * a.tests().hiddenPoints(), hiddenKeys.size());
+        double[] weights = new double[hiddenKeys.size()];
+        for (int i = 0; i < weights.length; i++) {
+            TestResult t = groups.get(hiddenKeys.get(i)).get(0);
+            weights[i] = a.tests().hiddenWeight(GradingPlan.outer(t.className()), t.method());
+        }
+        long[] hs = GradingPlan.share(100L * a.tests().hiddenPoints(), weights);
         Map<String, DataCases.Case> cases = new LinkedHashMap<>();
         for (DataCases.Case c : setup.cases.getOrDefault(a.id(), List.of())) {
             cases.put(c.method(), c);

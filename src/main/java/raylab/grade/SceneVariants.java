@@ -159,7 +159,13 @@ public final class SceneVariants {
                 s.set("vertices", out);
             }
             case "mesh" -> s.set("translate", vec(add(s.has("translate") ? vec(s.get("translate")) : new double[3], d)));
-            default -> throw new IllegalArgumentException("cannot move a surface of type " + s.path("type").asText());
+            default -> {
+                raylab.scene.SurfaceType t = raylab.scene.SurfaceTypes.extensions().get(s.path("type").asText());
+                if (t == null) {
+                    throw new IllegalArgumentException("cannot move a surface of type " + s.path("type").asText());
+                }
+                t.move(s, d);
+            }
         }
     }
 

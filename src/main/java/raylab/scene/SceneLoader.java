@@ -66,8 +66,8 @@ public final class SceneLoader {
     public static final Map<String, List<String>> REQUIRED_KEYS;
 
     /** Surface "type" values and their kinds. */
-    static final Map<String, String> SURFACE_TYPES = ordered(
-            "sphere", "sphere", "box", "box", "triangle", "triangle", "mesh", "mesh");
+    static final Map<String, String> SURFACE_TYPES = withExtensions(ordered(
+            "sphere", "sphere", "box", "box", "triangle", "triangle", "mesh", "mesh"));
     /** Material "type" values and their kinds. */
     static final Map<String, String> MATERIAL_TYPES = ordered(
             "lambertian", "lambertian", "blinnPhong", "blinnPhong", "flat", "flat",
@@ -94,6 +94,8 @@ public final class SceneLoader {
             "triangle", "a triangle",
             "mesh", "a mesh",
             "pointLight", "a point light");
+    /** How messages name each extension surface type ({@link SurfaceType#description}). */
+    private static final Map<String, String> EXTENSION_NAMES = new LinkedHashMap<>();
 
     static {
         Map<String, List<String>> a = new LinkedHashMap<>();
@@ -128,6 +130,11 @@ public final class SceneLoader {
         r.put("mesh", List.of("type", "file", "material"));
         a.put("pointLight", List.of("type", "name", "position", "intensity", "shadows"));
         r.put("pointLight", List.of("type", "position", "intensity"));
+        for (SurfaceType t : SurfaceTypes.extensions().values()) {
+            a.put(t.type(), List.copyOf(t.keys()));
+            r.put(t.type(), List.copyOf(t.requiredKeys()));
+            EXTENSION_NAMES.put(t.type(), t.description());
+        }
         ACCEPTED_KEYS = java.util.Collections.unmodifiableMap(a);
         REQUIRED_KEYS = java.util.Collections.unmodifiableMap(r);
     }
@@ -482,9 +489,68 @@ public final class SceneLoader {
                         vec3(vs.items.get(2)), m, name));
                 return;
             }
-            default:
+            case "mesh":
                 b.add(mesh(n, name, m));
+                return;
+            default:
+                b.add(SurfaceTypes.extensions().get(kind).build(fields(n), m, name));
         }
+    }
+
+    /** An extension surface's keys, read with this loader's checks and messages. */
+    private SurfaceType.Fields fields(Node n) {
+        return new SurfaceType.Fields() {
+            @Override
+            public boolean has(String key) {
+                return n.has(key);
+            }
+
+            @Override
+            public Vec3 vec3(String key) throws SceneException {
+                return SceneLoader.this.vec3(present(key));
+            }
+
+            @Override
+            public double number(String key) throws SceneException {
+                return SceneLoader.this.number(present(key));
+            }
+
+            @Override
+            public double positive(String key) throws SceneException {
+                return SceneLoader.this.positive(present(key), key);
+            }
+
+            @Override
+            public SceneException fail(String key, String message) {
+                return SceneLoader.this.fail(n.has(key) ? n.get(key) : n, message);
+            }
+
+            private Node present(String key) throws SceneException {
+                if (!n.has(key)) {
+                    throw SceneLoader.this.fail(n, "missing key " + JsonTree.quote(key) + " in " + kindName(n));
+                }
+                return n.get(key);
+            }
+        };
+    }
+
+    private static String kindName(Node n) {
+        return kindNameOf(n.has("type") ? String.valueOf(n.get("type").text) : "");
+    }
+
+    /** How messages name a kind of object: "a sphere", or an extension's own description. */
+    private static String kindNameOf(String kind) {
+        String builtIn = KIND_NAMES.get(kind);
+        return builtIn != null ? builtIn : EXTENSION_NAMES.getOrDefault(kind, "a " + kind);
+    }
+
+    /** The built-in surface types followed by those registered on the class path ({@link SurfaceTypes}). */
+    private static Map<String, String> withExtensions(Map<String, String> builtIn) {
+        Map<String, String> m = new LinkedHashMap<>(builtIn);
+        for (String t : SurfaceTypes.extensions().keySet()) {
+            m.put(t, t);
+        }
+        return java.util.Collections.unmodifiableMap(m);
     }
 
     private Mesh mesh(Node n, String name, Material m) throws SceneException {
@@ -601,7 +667,7 @@ public final class SceneLoader {
             if (!allowed.contains(key)) {
                 String close = suggest(key, allowed);
                 StringBuilder m = new StringBuilder("unknown key " + JsonTree.quote(key) + " in "
-                        + KIND_NAMES.get(kind));
+                        + kindNameOf(kind));
                 String elsewhere = siblingWithKey(kind, key);
                 if (elsewhere != null) {
                     m.append(" (it belongs to ").append(elsewhere).append(')');
@@ -615,7 +681,7 @@ public final class SceneLoader {
         for (String key : REQUIRED_KEYS.get(kind)) {
             if (!n.has(key)) {
                 throw fail(n, "missing required key " + JsonTree.quote(key) + " in "
-                        + KIND_NAMES.get(kind));
+                        + kindNameOf(kind));
             }
         }
     }
@@ -626,7 +692,7 @@ public final class SceneLoader {
             if (family.containsValue(kind)) {
                 for (String other : family.values()) {
                     if (!other.equals(kind) && ACCEPTED_KEYS.get(other).contains(key)) {
-                        return KIND_NAMES.get(other);
+                        return kindNameOf(other);
                     }
                 }
             }

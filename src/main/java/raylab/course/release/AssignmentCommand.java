@@ -30,20 +30,22 @@ import raylab.cli.UserError;
 import raylab.course.Assignment;
 import raylab.course.Assignments;
 import raylab.course.GradingPlan;
+import raylab.grade.VariantProposal;
+import raylab.grade.VariantSpec;
 import raylab.render.PngFiles;
 import raylab.scene.SceneLoader;
 
 /**
- * {@code raylab assignment add-scene|add-case}: grows a milestone in one command (instructors;
+ * {@code raylab assignment add-scene|add-case|add-test} ({@link AddTestCommand}): grows a milestone in one command (instructors;
  * the starter leaves this class out). Each command changes {@code assignment.json} (the item and
  * the milestone's total), rewrites the handout's grading table from it, and shows what students
  * will see; every file is written to a temporary name and moved, and nothing is changed when a
  * step fails.
  */
 @Command(name = "assignment", mixinStandardHelpOptions = true,
-        description = {"Add a graded scene or data cases to a milestone (instructors).",
+        description = {"Add a graded scene, data cases or a hidden test to a milestone (instructors).",
             "Updates assignment.json, the milestone's points and its handout's grading table. See docs/instructors.md."},
-        subcommands = {AssignmentCommand.AddScene.class, AssignmentCommand.AddCase.class})
+        subcommands = {AssignmentCommand.AddScene.class, AssignmentCommand.AddCase.class, AddTestCommand.class})
 public final class AssignmentCommand implements Callable<Integer> {
     @Spec
     CommandSpec spec;
@@ -138,11 +140,19 @@ public final class AssignmentCommand implements Callable<Integer> {
         }
     }
 
-    /** {@code raylab assignment add-scene MILESTONE SCENE.json --points N [--tolerance T]}. */
+    /** {@code raylab assignment add-scene MILESTONE SCENE.json --points N [--tolerance T] [--variant SPEC]}. */
     @Command(name = "add-scene", mixinStandardHelpOptions = true,
-            description = {"Render a scene's reference image and grade it in a milestone.",
-                "The scene is copied into scenes/ if it is elsewhere; the reference goes to scenes/reference/NAME.png."})
+            description = {"Render a scene's reference image and grade it in a milestone, on variants.",
+                "The scene is copied into scenes/ if it is elsewhere; the reference goes to scenes/reference/NAME.png.",
+                "Its \"variant\" (default: one made from the scene's camera and lights) is checked on the spot",
+                "with the grader's own check: the first draw of every checked grading seed must keep the point."},
+            exitCodeListHeading = "%nExit status:%n",
+            exitCodeList = {"0:added", "1:the reference render failed, or no variant keeps the scene's point (nothing changed)",
+                "2:bad input, or a scene that would be graded as published (nothing changed)"})
     public static final class AddScene extends Base implements Callable<Integer> {
+        /** Grading seeds a variant is checked on before it is written. */
+        static final int CHECK_SEEDS = 8;
+
         @Parameters(index = "0", paramLabel = "MILESTONE", description = "The milestone id (sphere, box, ...).")
         String milestoneId;
 
@@ -153,8 +163,19 @@ public final class AssignmentCommand implements Callable<Integer> {
         int points;
 
         @Option(names = "--tolerance", paramLabel = "T",
-                description = "Fraction of pixels allowed to differ by more than 2/255 (default: ${DEFAULT-VALUE}).")
-        double tolerance = 0.002;
+                description = "Fraction of pixels allowed to differ by more than 2/255 (default: the milestone's, "
+                        + "the most common among its scenes; 0.002 for its first).")
+        Double tolerance;
+
+        @Option(names = "--variant", paramLabel = "SPEC",
+                description = "The scene's \"variant\" as JSON, e.g. '{\"camera\": {\"yaw\": 10}}' (format: "
+                        + "docs/assignment-format.md); default: one made from the scene's camera and lights. "
+                        + "'none' is refused: students have the published scene's reference.")
+        String variant;
+
+        @Option(names = "--check-seeds", paramLabel = "N", description = "Grading seeds the variant is checked on "
+                + "(default: ${DEFAULT-VALUE}).")
+        int checkSeeds = CHECK_SEEDS;
 
         @Override
         public Integer call() throws Exception {
@@ -162,8 +183,11 @@ public final class AssignmentCommand implements Callable<Integer> {
             if (points < 1) {
                 throw UserError.badInput("--points must be at least 1, got " + points);
             }
-            if (!(tolerance >= 0 && tolerance < 1)) {
+            if (tolerance != null && !(tolerance >= 0 && tolerance < 1)) {
                 throw UserError.badInput("--tolerance must be a fraction in [0, 1), got " + tolerance);
+            }
+            if (checkSeeds < 1) {
+                throw UserError.badInput("--check-seeds must be at least 1, got " + checkSeeds);
             }
             Assignments all = load();
             Assignment a = milestone(all, milestoneId);
@@ -175,6 +199,12 @@ public final class AssignmentCommand implements Callable<Integer> {
             String name = scene.getFileName().toString();
             if (!name.endsWith(".json")) {
                 throw UserError.badInput(scene + ": a scene file ends in .json");
+            }
+            if (variant != null && variant.strip().equals("none")) {
+                throw UserError.badInput("WARNING: " + name + " would be graded as published: its reference PNG ships "
+                        + "in the starter, so a copied image earns its " + points + " point(s). Nothing was changed; "
+                        + "give it a --variant (or leave the option out for the default one), docs/instructors.md "
+                        + "\"Adding a scene\"");
             }
             Path inScenes = root.resolve("scenes").resolve(name);
             boolean copy = !inScenes.toAbsolutePath().normalize().equals(scene.toAbsolutePath().normalize());
@@ -190,6 +220,8 @@ public final class AssignmentCommand implements Callable<Integer> {
                     }
                 }
             }
+            double tol = tolerance != null ? tolerance : milestoneTolerance(a);
+            JsonNode spec = checkedVariant(name.replaceFirst("\\.json$", ""), out);
             // The reference, rendered with the reference solution (this tree's code), into a temporary file.
             Path tmp = Files.createTempFile("raylab-reference", ".png");
             try {
@@ -207,19 +239,106 @@ public final class AssignmentCommand implements Callable<Integer> {
                 }
                 extra.put(root.resolve(refRel), png);
                 String entry = String.format(Locale.ROOT,
-                        "{\"scene\": \"%s\", \"reference\": \"%s\", \"points\": %d, \"tolerance\": %s}", sceneRel, refRel,
-                        points, BigDecimalText.of(tolerance));
+                        "{\"scene\": \"%s\", \"reference\": \"%s\", \"points\": %d, \"tolerance\": %s,%n     \"variant\": %s}",
+                        sceneRel, refRel, points, BigDecimalText.of(tol), VariantProposal.text(spec));
                 String json = Files.readString(root.resolve(a.folder()).resolve("assignment.json"), StandardCharsets.UTF_8);
                 String updated = withTotal(addToArray(json, "scenes", entry), a.points() + points);
                 out.println("rendered the reference " + refRel + " (" + image.getWidth() + "x" + image.getHeight()
                         + ") with the reference solution" + (copy ? "; copied the scene to " + sceneRel : ""));
                 commit(a, updated, extra, out);
                 out.println("Students compare with: ./raylab render " + sceneRel + " --compare " + refRel
-                        + " (tolerance " + GradingPlan.percent(tolerance) + " by default)");
+                        + " (tolerance " + GradingPlan.percent(tol) + " by default); the grader grades variants of it:"
+                        + " ./raylab variant " + sceneRel + " --seed N -o v.png shows one");
                 return 0;
             } finally {
                 Files.deleteIfExists(tmp);
             }
+        }
+
+        /**
+         * The variant to write: the given one if it keeps the point on every checked seed, or the
+         * default (narrowed up to twice when it does not); a one-line error and nothing changed
+         * when none does.
+         */
+        private JsonNode checkedVariant(String sceneName, PrintWriter out) throws IOException {
+            JsonNode published = new ObjectMapper().readTree(scene.toFile());
+            long seed0 = 20261204L;
+            try {
+                if (variant != null) {
+                    JsonNode given;
+                    try {
+                        given = new ObjectMapper().readTree(variant);
+                    } catch (IOException e) {
+                        throw UserError.badInput("--variant: not valid JSON: " + String.valueOf(e.getMessage()).split("\n")[0]);
+                    }
+                    if (given == null || !given.isObject()) {
+                        throw UserError.badInput("--variant: a JSON object, e.g. '{\"camera\": {\"yaw\": 10}}', got " + variant);
+                    }
+                    VariantProposal.Checked c = VariantProposal.check(published, scene, given, sceneName, checkSeeds, seed0);
+                    if (!c.keepsThePoint()) {
+                        throw new UserError("the --variant loses the scene's point on " + c.failures().size() + " of "
+                                + checkSeeds + " grading seeds (first: " + c.failures().get(0) + "); narrow its bounds. "
+                                + "Nothing was changed", 1);
+                    }
+                    out.println("variant " + VariantProposal.text(given) + ": the first draw keeps the point on each of "
+                            + checkSeeds + " grading seeds (the grader's check)");
+                    return given;
+                }
+                com.fasterxml.jackson.databind.node.ObjectNode spec = VariantProposal.defaultSpec(published);
+                if (spec.isEmpty()) {
+                    throw new UserError("WARNING: the default variant has nothing to move in " + scene.getFileName()
+                            + " (no lights, and a camera without " + (published.path("camera").path("type").asText("")
+                                    .equals("orthographic") ? "viewDirection" : "lookAt") + "), so it would be graded as"
+                            + " published and a copied reference would score; nothing was changed: give a --variant with"
+                            + " \"placement\" (docs/assignment-format.md)", 1);
+                }
+                String first = "";
+                for (int k = 0; k < 3; k++) {
+                    VariantProposal.Checked c = VariantProposal.check(published, scene, spec, sceneName, checkSeeds, seed0);
+                    if (c.keepsThePoint()) {
+                        out.println("variant " + VariantProposal.text(spec) + (k == 0 ? " (the default for its content)"
+                                : " (the default narrowed " + k + " time(s): " + first + ")")
+                                + ": the first draw keeps the point on each of " + checkSeeds
+                                + " grading seeds (the grader's check)");
+                        return spec;
+                    }
+                    if (k == 0) {
+                        first = c.failures().get(0);
+                    }
+                    spec = VariantProposal.narrower(spec);
+                }
+                throw new UserError("WARNING: no default variant keeps the point of " + scene.getFileName()
+                        + " (" + first + "), so it would be graded as published and a copied reference would score;"
+                        + " nothing was changed: give a --variant that keeps what it tests (docs/assignment-format.md)", 1);
+            } catch (VariantSpec.Invalid e) {
+                throw UserError.badInput("--variant: " + e.getMessage());
+            } catch (RuntimeException e) {
+                if (e instanceof UserError) {
+                    throw e;
+                }
+                // The grader could not vary this camera this way (a perspective camera without lookAt, ...).
+                throw UserError.badInput("--variant: the grader cannot vary " + scene.getFileName() + " this way: "
+                        + e + " (docs/assignment-format.md, \"Graded scene variants\")");
+            } catch (raylab.scene.SceneException e) {
+                throw UserError.badInput(e.getMessage());
+            }
+        }
+
+        /** The tolerance most of the milestone's scenes have (the smallest of the most common); 0.002 for none. */
+        static double milestoneTolerance(Assignment a) {
+            Map<Double, Integer> count = new java.util.TreeMap<>();
+            for (Assignment.GradedScene g : a.scenes()) {
+                count.merge(g.tolerance(), 1, Integer::sum);
+            }
+            double best = 0.002;
+            int n = 0;
+            for (Map.Entry<Double, Integer> e : count.entrySet()) {
+                if (e.getValue() > n) {
+                    best = e.getKey();
+                    n = e.getValue();
+                }
+            }
+            return best;
         }
     }
 

@@ -1,24 +1,66 @@
 package raylab.course.release;
 
+import java.io.IOException;
+import java.nio.charset.StandardCharsets;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.nio.file.StandardCopyOption;
+import java.nio.file.attribute.PosixFilePermissions;
 import java.util.ArrayList;
 import java.util.List;
 import java.util.regex.Matcher;
 import java.util.regex.Pattern;
 
 import raylab.course.Assignment;
+import raylab.course.Assignments;
 import raylab.course.GradingPlan;
 
 /**
  * The points in a handout, generated from {@code assignment.json} (through {@link GradingPlan},
  * as check and the grader count them): the total in the title line
  * {@code # Milestone N — Title (20 points)} and the table of the {@code ## Grading} section.
- * {@code raylab release} writes the starter's handouts with it, and
- * {@code raylab assignment add-scene} rewrites the instructor's.
+ * {@code raylab release} writes the starter's handouts with it and rewrites the instructor's
+ * ({@link #refresh}), and {@code raylab assignment add-scene|add-case|add-test} rewrite the
+ * instructor's.
  */
 public final class HandoutTable {
     private static final Pattern TITLE = Pattern.compile("(?m)^(# .*\\()(\\d+(?:\\.\\d+)?)( points\\)\\s*)$");
 
     private HandoutTable() {
+    }
+
+    /**
+     * Rewrites every milestone handout of the instructor's tree whose title total or grading
+     * table is not what {@code assignment.json} says (each to a temporary name, then moved).
+     *
+     * @return the handouts rewritten, relative to {@code root} ('/'-separated)
+     */
+    public static List<String> refresh(Path root) throws IOException {
+        List<String> out = new ArrayList<>();
+        for (Assignment a : Assignments.load(root).all()) {
+            Path readme = root.resolve(a.folder()).resolve("README.md");
+            if (!Files.isRegularFile(readme)) {
+                continue;
+            }
+            String text = Files.readString(readme, StandardCharsets.UTF_8);
+            String updated = update(text, GradingPlan.of(root, a));
+            if (!updated.equals(text)) {
+                Path tmp = Files.createTempFile(readme.getParent(), ".README.md", ".tmp");
+                try {
+                    Files.writeString(tmp, updated, StandardCharsets.UTF_8);
+                    try {
+                        Files.setPosixFilePermissions(tmp, PosixFilePermissions.fromString("rw-r--r--"));
+                    } catch (UnsupportedOperationException e) {
+                        // not a POSIX file system
+                    }
+                    Files.move(tmp, readme, StandardCopyOption.REPLACE_EXISTING, StandardCopyOption.ATOMIC_MOVE);
+                } finally {
+                    Files.deleteIfExists(tmp);
+                }
+                out.add(root.relativize(readme).toString().replace('\\', '/'));
+            }
+        }
+        return out;
     }
 
     /** The handout with its title total and grading table made from the plan. */

@@ -248,6 +248,7 @@ public final class Release {
         }
         if (obj.get("tests") instanceof ObjectNode tests) {
             tests.remove("hidden");
+            tests.remove("hiddenWeights"); // names the hidden classes
             if (casePoints > 0) {
                 double hidden = tests.path("hiddenPoints").asDouble(0) + casePoints;
                 if (hidden != Math.rint(hidden)) {

@@ -52,6 +52,10 @@ public final class ReleaseCommand implements Callable<Integer> {
         long t0 = System.nanoTime();
         Release.Written written;
         try {
+            // The instructor's handouts say what the starter's say (the points of assignment.json).
+            for (String h : HandoutTable.refresh(project)) {
+                w.println("updated the instructor's handout " + h + " (title total and grading table from assignment.json)");
+            }
             written = Release.write(project, out, force);
         } catch (IOException e) {
             throw new UserError("release: " + e.getMessage(), 1);

@@ -57,7 +57,7 @@ class AddSceneTest {
              "radius": 2}, "ray": {"p": [0, 0, 10], "d": [0, 0, -1]}, "expect": {"hit": true, "t": 8}}
             """;
 
-    private static Path copy(Path root, Path to) throws IOException {
+    static Path copy(Path root, Path to) throws IOException {
         for (String d : List.of("assignments", "scenes", "grader", "src/main/java", "src/test/java")) {
             try (Stream<Path> s = Files.walk(root.resolve(d))) {
                 for (Path p : (Iterable<Path>) s::iterator) {
@@ -73,7 +73,7 @@ class AddSceneTest {
         return to;
     }
 
-    private static String run(int expected, String... args) {
+    static String run(int expected, String... args) {
         StringWriter out = new StringWriter();
         StringWriter err = new StringWriter();
         int status = Main.run(new PrintWriter(out), new PrintWriter(err), args);
@@ -104,8 +104,12 @@ class AddSceneTest {
         System.out.println(out);
         Assignment sphere = Assignments.load(copy).byId("sphere").orElseThrow();
         assertEquals(23, sphere.points());
-        assertTrue(sphere.scenes().contains(new Assignment.GradedScene("scenes/twospheres.json",
-                "scenes/reference/twospheres.png", 3, 0.003)), sphere.scenes().toString());
+        Assignment.GradedScene added = sphere.scenes().get(sphere.scenes().size() - 1);
+        assertEquals(List.of("scenes/twospheres.json", "scenes/reference/twospheres.png", 3, 0.003),
+                List.of(added.scene(), added.reference(), added.points(), added.tolerance()), sphere.scenes().toString());
+        // The default variant for a scene without lights: the camera only, checked on the spot.
+        assertEquals("{\"camera\":{\"yaw\":15,\"pitch\":6,\"distance\":0.1}}", added.variant().toString());
+        assertTrue(out.contains("the first draw keeps the point on each of 8 grading seeds"), out);
         // The reference is the reference solution's render.
         Path fresh = dir.resolve("fresh.png");
         run(0, "render", scene.toString(), "-o", fresh.toString(), "--quiet");
@@ -154,7 +158,7 @@ class AddSceneTest {
         assertEquals(24, r.get("score").asDouble(), 1e-9, "the reference earns every point");
     }
 
-    private static Path write(Path p, String text) throws IOException {
+    static Path write(Path p, String text) throws IOException {
         Files.writeString(p, text);
         return p;
     }

@@ -31,23 +31,12 @@ class ReleaseHandoutTest {
 
     @Test
     void changingPointsInAssignmentJsonChangesTheHandoutAtTheNextRelease() throws IOException {
-        Path root = Path.of("").toAbsolutePath();
-        Path copy = dir.resolve("course");
-        for (String f : Release.projectFiles(root)) {
-            Path t = copy.resolve(f);
-            Files.createDirectories(t.getParent());
-            Files.copy(root.resolve(f), t);
-        }
+        Path copy = copyProject();
         Path json = copy.resolve("assignments/02-box/assignment.json");
-        String text = Files.readString(json);
         // Add 3 to the visible points (and so to the total), whatever they are today.
-        java.util.regex.Matcher total = java.util.regex.Pattern.compile("\"points\": (\\d+),").matcher(text);
-        java.util.regex.Matcher visibleMatch = java.util.regex.Pattern.compile("\"visiblePoints\": (\\d+),").matcher(text);
-        assertTrue(total.find() && visibleMatch.find(), text);
-        int newTotal = Integer.parseInt(total.group(1)) + 3;
-        int newVisible = Integer.parseInt(visibleMatch.group(1)) + 3;
-        Files.writeString(json, text.replaceFirst("\"points\": \\d+,", "\"points\": " + newTotal + ",")
-                .replaceFirst("\"visiblePoints\": \\d+,", "\"visiblePoints\": " + newVisible + ","));
+        int[] raised = raiseVisiblePoints(json, 3);
+        int newTotal = raised[0];
+        int newVisible = raised[1];
         String handoutBefore = Files.readString(copy.resolve("assignments/02-box/README.md"));
 
         Release.Tree tree = Release.build(copy);
@@ -94,5 +83,50 @@ class ReleaseHandoutTest {
                             + i.tolerance()).toList(), "students can run what the grader calls visible: " + a.id());
             assertEquals(inTree.hiddenCents(), inStarter.hiddenCents(), a.id());
         }
+    }
+
+    @Test
+    void releaseRegeneratesTheInstructorsHandoutsWithTheStartersAndSaysWhich() throws IOException {
+        Path copy = copyProject();
+        int newTotal = raiseVisiblePoints(copy.resolve("assignments/04-lambert/assignment.json"), 2)[0];
+        Path untouched = copy.resolve("assignments/02-box/README.md");
+        long boxModified = Files.getLastModifiedTime(untouched).toMillis();
+        String boxBefore = Files.readString(untouched);
+
+        Path starter = dir.resolve("starter");
+        String out = AddSceneTest.run(0, "release", "--out", starter.toString(), "--no-verify", "--root", copy.toString());
+        assertTrue(out.contains("updated the instructor's handout assignments/04-lambert/README.md"), out);
+        assertFalse(out.contains("assignments/02-box/README.md"), "only the handout that changed: " + out);
+        String instructor = Files.readString(copy.resolve("assignments/04-lambert/README.md"));
+        assertTrue(instructor.lines().findFirst().orElse("").endsWith("(" + newTotal + " points)"), instructor);
+        assertTrue(instructor.contains("| **total** | **" + newTotal + "** |"), instructor);
+        assertEquals(Files.readString(starter.resolve("assignments/04-lambert/README.md")), instructor,
+                "the instructor's handout is the starter's");
+        assertEquals(boxBefore, Files.readString(untouched));
+        assertEquals(boxModified, Files.getLastModifiedTime(untouched).toMillis(), "a handout that agrees is not rewritten");
+    }
+
+    private Path copyProject() throws IOException {
+        Path root = Path.of("").toAbsolutePath();
+        Path copy = dir.resolve("course");
+        for (String f : Release.projectFiles(root)) {
+            Path t = copy.resolve(f);
+            Files.createDirectories(t.getParent());
+            Files.copy(root.resolve(f), t);
+        }
+        return copy;
+    }
+
+    /** Adds {@code by} to a milestone's visiblePoints and total; the new {total, visiblePoints}. */
+    private static int[] raiseVisiblePoints(Path json, int by) throws IOException {
+        String text = Files.readString(json);
+        java.util.regex.Matcher total = java.util.regex.Pattern.compile("\"points\": (\\d+),").matcher(text);
+        java.util.regex.Matcher visible = java.util.regex.Pattern.compile("\"visiblePoints\": (\\d+),").matcher(text);
+        assertTrue(total.find() && visible.find(), text);
+        int newTotal = Integer.parseInt(total.group(1)) + by;
+        int newVisible = Integer.parseInt(visible.group(1)) + by;
+        Files.writeString(json, text.replaceFirst("\"points\": \\d+,", "\"points\": " + newTotal + ",")
+                .replaceFirst("\"visiblePoints\": \\d+,", "\"visiblePoints\": " + newVisible + ","));
+        return new int[] {newTotal, newVisible};
     }
 }

@@ -105,11 +105,12 @@ class ReleasePartsTest {
     @Test
     void dataCasesStayWithTheGraderAndTheirPointsCountAsHidden() throws IOException {
         String in = "{\"id\": \"sphere\", \"points\": 10, \"tests\": {\"tag\": \"sphere\", \"visible\": [],"
-                + " \"hidden\": [\"grader/x.java\"], \"visiblePoints\": 5, \"hiddenPoints\": 3},"
+                + " \"hidden\": [\"grader/x.java\"], \"visiblePoints\": 5, \"hiddenPoints\": 3, \"hiddenWeights\": {\"x\": 2}},"
                 + " \"cases\": [\"cases/basic.json\"]}";
         String text = new String(Release.withoutHiddenTests("a.json", in.getBytes(StandardCharsets.UTF_8), 2),
                 StandardCharsets.UTF_8);
         assertFalse(text.contains("cases"), text);
+        assertFalse(text.contains("hiddenWeights"), "the weights name the hidden classes: " + text);
         assertTrue(text.contains("\"hiddenPoints\": 5"), "3 hidden points + 2 case points: " + text);
     }
 }
