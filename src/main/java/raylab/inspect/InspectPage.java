@@ -18,7 +18,6 @@ import java.util.function.Function;
 import javax.imageio.ImageIO;
 
 import com.fasterxml.jackson.databind.ObjectMapper;
-import com.fasterxml.jackson.databind.node.ArrayNode;
 import com.fasterxml.jackson.databind.node.ObjectNode;
 import com.sun.net.httpserver.HttpExchange;
 import com.sun.net.httpserver.HttpServer;
@@ -139,15 +138,7 @@ public final class InspectPage {
         o.put("difference", d.map(FirstDifference.Difference::line).orElse("no difference: your ray tree is the reference's"));
         o.put("differs", d.isPresent());
         o.put("method", d.map(FirstDifference.Difference::method).orElse(""));
-        ArrayNode rows = o.putArray("rows");
-        for (TreeTable.Row r : TreeTable.rows(mineTree, ref, d)) {
-            ObjectNode n = rows.addObject();
-            n.put("quantity", r.quantity());
-            n.put("mine", r.mine());
-            n.put("reference", r.reference());
-            n.put("differs", r.differs());
-            n.put("first", r.first());
-        }
+        TreeTable.json(TreeTable.rows(mineTree, ref, d), o.putArray("rows"));
         o.put("top", SceneDrawing.svg(inspection.scene, mineTree, ref, true));
         o.put("side", SceneDrawing.svg(inspection.scene, mineTree, ref, false));
         return JSON.writeValueAsString(o);
@@ -168,7 +159,7 @@ public final class InspectPage {
         b.append("<!DOCTYPE html><html><head><meta charset=\"utf-8\"><title>raylab inspect ")
                 .append(TreeTable.esc(title)).append("</title><style>")
                 .append("body{font-family:sans-serif;margin:12px}figure{display:inline-block;margin:0 12px 8px 0}")
-                .append("img.pic{image-rendering:pixelated;cursor:crosshair;max-width:400px;border:1px solid #ccc}")
+                .append("img.pic{image-rendering:pixelated;cursor:crosshair;border:1px solid #ccc}")
                 .append("#difference{font-weight:bold;margin:8px 0;padding:6px;background:#f4f4f4}")
                 .append("tr.first{background:#ffd6d6}tr.differs{background:#fff1d6}td,th{padding:2px 6px;text-align:left}")
                 .append("</style></head><body><h1 style=\"font-size:20px\">").append(TreeTable.esc(title)).append("</h1>")
@@ -219,11 +210,13 @@ public final class InspectPage {
                   show(Math.max(0, Math.min(img.naturalWidth - 1, x)), Math.max(0, Math.min(img.naturalHeight - 1, y)));
                 });
               });
+              // A click at image pixel (x, y), as a mouse would make it (the page opened at #X,Y; tests).
               window.raylabClick = function (id, x, y) {
                 var img = document.getElementById(id);
                 var r = img.getBoundingClientRect();
-                var cx = r.left + img.clientLeft + (x + 0.5) * img.clientWidth / img.naturalWidth;
-                var cy = r.top + img.clientTop + (y + 0.5) * img.clientHeight / img.naturalHeight;
+                // Mouse events have whole-pixel coordinates: the first whole one inside the image pixel.
+                var cx = Math.ceil(r.left + img.clientLeft + x * img.clientWidth / img.naturalWidth);
+                var cy = Math.ceil(r.top + img.clientTop + y * img.clientHeight / img.naturalHeight);
                 img.dispatchEvent(new MouseEvent('click', {clientX: cx, clientY: cy, bubbles: true}));
               };
               window.addEventListener('load', function () {

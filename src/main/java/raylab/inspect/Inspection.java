@@ -133,10 +133,17 @@ public final class Inspection {
     }
 
     /**
-     * For {@code check}: the first difference at the worst pixel of the student's render
+     * For {@code check}, run in the project folder: the first difference at the worst pixel of the student's render
      * {@code minePng} of a published scene, and the command that shows it; empty when there is no
      * reference trace or nothing to name. Never throws: what goes wrong here leaves the line out.
      */
+    public static Optional<String> checkLine(String scene) {
+        Path root = Path.of("").toAbsolutePath();
+        String name = Path.of(scene).getFileName().toString().replaceFirst("\\.json$", "");
+        return checkLine(root.resolve(scene), root.resolve("out").resolve(name + ".png"), scene);
+    }
+
+    /** As {@link #checkLine(String)}, with the render {@code minePng} (check writes it as out/NAME.png). */
     public static Optional<String> checkLine(Path scenePath, Path minePng, String shownScene) {
         try {
             Inspection in = of(scenePath);

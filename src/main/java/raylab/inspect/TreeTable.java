@@ -101,6 +101,18 @@ public final class TreeTable {
         return b.append("</table>").toString();
     }
 
+    /** The rows as JSON objects (quantity, mine, reference, differs, first) added to {@code to}. */
+    public static void json(List<Row> rows, com.fasterxml.jackson.databind.node.ArrayNode to) {
+        for (Row r : rows) {
+            com.fasterxml.jackson.databind.node.ObjectNode n = to.addObject();
+            n.put("quantity", r.quantity());
+            n.put("mine", r.mine());
+            n.put("reference", r.reference());
+            n.put("differs", r.differs());
+            n.put("first", r.first());
+        }
+    }
+
     public static String esc(String s) {
         return s.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;").replace("\"", "&quot;");
     }

@@ -127,6 +127,8 @@ public final class Release {
             // Visible data cases run in ./raylab check, with the grader's case checker.
             out.put(CASE_CHECK_STARTER, Files.readAllBytes(root.resolve(CASE_CHECK)));
         }
+        // What raylab inspect and check compare a student's ray trees with: data, made by the reference.
+        ReferenceTraces.add(root, out);
         out.put("README.md", StarterReadme.render(root, spec.readmeTemplate(), assignments)
                 .getBytes(StandardCharsets.UTF_8));
         Set<String> exec = new HashSet<>();
