@@ -284,6 +284,15 @@ public final class Speculation {
         return g;
     }
 
+    /**
+     * Forgets this round's predictions without sending them: the trace just made with predictions
+     * only is the reference solution's, kept for the graded feedback (issue 40), not checked.
+     */
+    public void discard() {
+        guesses.clear();
+        guessed.clear();
+    }
+
     /** Whether predictions wait for the student's answers. */
     public boolean pending() {
         return !guesses.isEmpty();
