@@ -59,4 +59,15 @@ class GradedPixelFeedbackTest {
     void acneNamedInTheFeedbackOfTheShadowVariants() throws IOException {
         planted("bugs2", "shadows", "shadows.json", "Shadows.isShadowed", "shadow acne");
     }
+
+    @Test
+    void unnormalisedHalfVectorNamedInTheFeedbackOfTheHighlightVariants() throws IOException {
+        planted("bugs1", "phong", "highlights.json", "BlinnPhong.specular", "unit vector");
+    }
+
+    @Test
+    void inwardNormalNamedInTheFeedbackOfTheTriangleVariants() throws IOException {
+        planted("mistakes/triangle-normal-toward-ray", "triangle", "triangles.json", "Triangle.intersect",
+                "points into the surface");
+    }
 }
