@@ -3,6 +3,8 @@ package raylab.boundary;
 import java.nio.charset.StandardCharsets;
 import java.nio.file.Files;
 import java.nio.file.Path;
+import java.util.ArrayList;
+import java.util.List;
 
 import raylab.math.Color;
 import raylab.ray.IntersectionRecord;
@@ -84,11 +86,15 @@ public final class TrustedRender {
         return image;
     }
 
-
     private static void checkTime() {
-        if (timed && (budget < 0 || Remote.process().studentCpuNanos() - cpuAtStart > budget)) {
+        if (timeUp()) {
             throw new OutOfTime();
         }
+    }
+
+    /** Whether the renders' time limit has passed. */
+    private static boolean timeUp() {
+        return timed && (budget < 0 || Remote.process().studentCpuNanos() - cpuAtStart > budget);
     }
 
     private static Color pixel(Renderer r, Shader shader, IntersectionRecord rec, RenderStats stats, int x, int y,
@@ -227,6 +233,7 @@ public final class TrustedRender {
             cpuAtStart = Remote.process().studentCpuNanos();
             Remote.process().beforeEachFrame(TrustedRender::checkTime);
         }
+        List<Runnable> later = new ArrayList<>();
         for (int i = 0; i + 2 < args.size(); i += 3) {
             Path out = Path.of(args.get(i + 1));
             String err = null;
@@ -248,6 +255,9 @@ public final class TrustedRender {
                 PngFiles.write(image.toBufferedImage(), out);
                 if (reference != null && set[0] == scene.width * scene.height) {
                     PngFiles.write(reference.toBufferedImage(), Path.of(out + ".reference.png"));
+                    // After every scene is rendered, so that the feedback cannot change a score.
+                    Path feedback = Path.of(out + ".pixels.json");
+                    later.add(() -> pixelFeedback(scene, image, reference, spec, feedback));
                 }
                 if (Boolean.getBoolean("raylab.boundary.raw")) {
                     writeRaw(image, Path.of(out + ".raw")); // every channel's bits, for tests
@@ -277,6 +287,62 @@ public final class TrustedRender {
                 Files.writeString(Path.of(out + ".err"), err.length() > 2000 ? err.substring(0, 2000) : err,
                         StandardCharsets.UTF_8);
             }
+        }
+        for (Runnable r : later) {
+            r.run();
+        }
+    }
+
+    /**
+     * The graded feedback of a scene that differs (issue 40): its worst pixels traced both ways, the
+     * reference's tree by the milestone's reference alone ({@link Speculation#beginReference}: nothing noted or sent),
+     * the student's through the process boundary one call at a time, written as
+     * {@link raylab.inspect.WorstPixels} JSON. Nothing is written when the images agree, when the
+     * renders' time is up, or when anything goes wrong: the feedback never costs a grade.
+     */
+    static void pixelFeedback(Scene scene, Image image, Image reference, Speculation spec, Path file) {
+        if (timeUp()) {
+            return;
+        }
+        raylab.inspect.Tracer tracer;
+        try {
+            tracer = new raylab.inspect.Tracer(scene);
+        } catch (RuntimeException | StackOverflowError e) {
+            return;
+        }
+        Remote.speculate(spec);
+        try {
+            spec.clear();
+            var result = raylab.inspect.WorstPixels.find(image, reference, (x, y) -> {
+                if (timeUp()) {
+                    return null;
+                }
+                raylab.inspect.RayTree ref;
+                spec.beginReference();
+                try {
+                    ref = tracer.trace(x, y);
+                } catch (Speculation.Unpredictable | RuntimeException | StackOverflowError e) {
+                    return null;
+                } finally {
+                    spec.end();
+                }
+                try {
+                    return new raylab.inspect.RayTree[] {tracer.trace(x, y), ref};
+                } catch (RuntimeException | StackOverflowError e) {
+                    return null;
+                }
+            }, scene);
+            if (result.isPresent()) {
+                raylab.inspect.WorstPixels.write(result.get(), file);
+            }
+        } catch (Throwable e) {
+            try {
+                Files.deleteIfExists(file);
+            } catch (java.io.IOException ignored) {
+                // nothing more to do: no feedback
+            }
+        } finally {
+            Remote.speculate(null);
         }
     }
 

@@ -118,6 +118,9 @@ public final class CheckCommand implements Callable<Integer> {
         for (MilestoneCheck.SceneOutcome s : o.scenes()) {
             lines.add("  " + sceneWord(s) + " " + s.scene().scene() + ": "
                     + oneLine(s.message()).replaceFirst("^(MATCH|DIFFERS): ", ""));
+            if (s.status() == MilestoneCheck.SceneStatus.DIFFERS) { // issue 40: the worst pixel's first difference
+                raylab.inspect.Inspection.checkLine(s.scene().scene()).ifPresent(l -> lines.add("          " + l));
+            }
         }
         if (!lines.isEmpty()) {
             out.println(o.assignment().id() + ":");

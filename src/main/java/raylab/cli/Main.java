@@ -12,7 +12,7 @@ import picocli.CommandLine.Command;
  */
 @Command(name = "raylab", mixinStandardHelpOptions = true, versionProvider = Main.Version.class,
         description = "A ray tracer for learning: render scenes, trace one pixel, check milestones.",
-        subcommands = {RenderCommand.class, TraceCommand.class, CheckCommand.class, SubmitCheckCommand.class,
+        subcommands = {RenderCommand.class, TraceCommand.class, InspectCommand.class, CheckCommand.class, SubmitCheckCommand.class,
             BenchCommand.class,
             CommandLine.HelpCommand.class})
 public final class Main implements Runnable {

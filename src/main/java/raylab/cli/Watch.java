@@ -32,6 +32,20 @@ final class Watch {
      * the student files or {@code extra}; returns only when interrupted.
      */
     static int run(PrintWriter out, List<String> args, List<Path> extra) throws IOException {
+        return run(out, args, extra, false);
+    }
+
+    /** Runs the command line of {@code spec} without --watch, as {@link #run(PrintWriter, List, List, boolean)}. */
+    static int again(picocli.CommandLine.Model.CommandSpec spec, boolean restart) throws IOException {
+        return run(spec.commandLine().getOut(), without(spec.commandLine().getParseResult().originalArgs()
+                .toArray(String[]::new)), List.of(), restart);
+    }
+
+    /**
+     * As {@link #run(PrintWriter, List, List)}; with {@code restart} the command (a server such as
+     * {@code inspect}, which runs until stopped) is stopped and started again at every save.
+     */
+    static int run(PrintWriter out, List<String> args, List<Path> extra, boolean restart) throws IOException {
         Path home = Launch.home();
         List<Path> files = new ArrayList<>();
         for (String f : StudentFault.studentFiles(home)) {
@@ -66,6 +80,13 @@ final class Watch {
                 cmd.addAll(args);
                 running[0] = new ProcessBuilder(cmd).inheritIO().start();
                 try {
+                    while (restart && running[0].isAlive() && stamps(files).equals(seen)) {
+                        Thread.sleep(POLL_MILLIS);
+                    }
+                    if (restart && running[0].isAlive()) {
+                        running[0].descendants().forEach(ProcessHandle::destroy);
+                        running[0].destroy();
+                    }
                     running[0].waitFor();
                 } catch (InterruptedException e) {
                     Thread.currentThread().interrupt();

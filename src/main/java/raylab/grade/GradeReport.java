@@ -161,7 +161,14 @@ public record GradeReport(List<Milestone> milestones, List<String> accepted, Lis
         }
     }
 
-    /** PNG bytes of a scene's render, its reference and the diff heatmap, and the metric line. */
-    public record Images(byte[] student, byte[] reference, byte[] diff, String metric) {
+    /**
+     * PNG bytes of a scene's render, its reference and the diff heatmap, and the metric line; for a
+     * scene that differs, its worst pixels' ray trees ({@code raylab.inspect.WorstPixels} JSON,
+     * shown by {@link PixelFeedback}; "" when none).
+     */
+    public record Images(byte[] student, byte[] reference, byte[] diff, String metric, String pixels) {
+        public Images(byte[] student, byte[] reference, byte[] diff, String metric) {
+            this(student, reference, diff, metric, "");
+        }
     }
 }

@@ -402,7 +402,7 @@ public final class Grader {
         // Scenes.
         long s0 = System.nanoTime();
         tests.addAll(renders != null && renders.done ? scoreScenes(a, renders.images, renders.errors, renders.late,
-                renders.references, renders.timedOut, false, renders.millis, options.sceneLimit().multipliedBy(a.scenes().size()))
+                renders.references, renders.pixels, renders.timedOut, false, renders.millis, options.sceneLimit().multipliedBy(a.scenes().size()))
                 : boundary ? gradeScenes(a, trusted, overlay, setup, mdir, scenesCopy, sandbox)
                 : gradeScenesInBox(a, layers, setup, mdir, scenesCopy, sandbox));
         if (TIMES) {
@@ -620,7 +620,7 @@ public final class Grader {
                     && r.status() != TestResult.Status.MISSING && !r.message().startsWith("this test was running when"));
             if (renders != null) {
                 renders.done = true;
-                readRenders(pngs, renders.images, renders.errors, renders.late, renders.references);
+                readRenders(pngs, renders.images, renders.errors, renders.late, renders.references, renders.pixels);
                 renders.timedOut = !o.finished() && o.problem().startsWith("stopped after");
                 byte[] millis = readCapped(dir.resolve("render").resolve("millis.txt"), 64);
                 try {
@@ -680,6 +680,8 @@ public final class Grader {
         final List<String> errors = new ArrayList<>();
         final List<Boolean> late = new ArrayList<>();
         final List<byte[]> references = new ArrayList<>();
+        /** Per scene the graded feedback's worst pixels (raylab.inspect.WorstPixels JSON), or null. */
+        final List<String> pixels = new ArrayList<>();
     }
 
     /** Runs some of M's test classes in one child JVM in its own box; the results go into {@code got}. */
@@ -986,10 +988,12 @@ public final class Grader {
 
     /** What a render left: the PNG and the first line of its error, capped in size, not following links. */
     private static void readRenders(List<Path> pngs, List<byte[]> images, List<String> errors, List<Boolean> late,
-            List<byte[]> referencesMade) throws IOException {
+            List<byte[]> referencesMade, List<String> pixels) throws IOException {
         for (Path png : pngs) {
             images.add(readCapped(png, 64L << 20));
             referencesMade.add(readCapped(Path.of(png + ".reference.png"), 64L << 20));
+            byte[] px = readCapped(Path.of(png + ".pixels.json"), 256 * 1024);
+            pixels.add(px == null ? null : new String(px, java.nio.charset.StandardCharsets.UTF_8));
             byte[] err = readCapped(Path.of(png + ".err"), 64 * 1024);
             errors.add(err == null ? null : GraderSetup.firstLine(new String(err,
                     java.nio.charset.StandardCharsets.UTF_8)).replaceFirst("^raylab: ", ""));
@@ -1044,6 +1048,7 @@ public final class Grader {
         List<String> errors = new ArrayList<>();
         List<Boolean> late = new ArrayList<>();
         List<byte[]> referencesMade = new ArrayList<>();
+        List<String> pixels = new ArrayList<>();
         Process p = null;
         try {
             ProcessBuilder pb = new ProcessBuilder(cmd).directory(dir.toFile())
@@ -1066,7 +1071,7 @@ public final class Grader {
                 Thread.currentThread().interrupt();
             }
             // Read what the child left only once it is gone.
-            readRenders(pngs, images, errors, late, referencesMade);
+            readRenders(pngs, images, errors, late, referencesMade, pixels);
         } finally {
             if (p != null) {
                 p.descendants().forEach(ProcessHandle::destroyForcibly);
@@ -1078,7 +1083,7 @@ public final class Grader {
         long ms = (System.nanoTime() - t0) / 1_000_000 / a.scenes().size();
         // -XX:+ExitOnOutOfMemoryError ends the JVM with status 3 when the heap runs out.
         boolean outOfMemory = p != null && !timedOut && !p.isAlive() && p.exitValue() == 3;
-        return scoreScenes(a, images, errors, late, referencesMade, timedOut, outOfMemory, ms, limit);
+        return scoreScenes(a, images, errors, late, referencesMade, pixels, timedOut, outOfMemory, ms, limit);
     }
 
     /**
@@ -1086,7 +1091,7 @@ public final class Grader {
      * limit; {@code timedOut}: the whole run was).
      */
     private List<GradeReport.Test> scoreScenes(Assignment a, List<byte[]> images, List<String> errors,
-            List<Boolean> late, List<byte[]> referencesMade, boolean timedOut, boolean outOfMemory, long ms,
+            List<Boolean> late, List<byte[]> referencesMade, List<String> pixels, boolean timedOut, boolean outOfMemory, long ms,
             Duration limit) {
         List<GradeReport.Test> out = new ArrayList<>();
         List<String> studentFiles = a.files().stream().map(Assignment.StudentFile::path).toList();
@@ -1129,7 +1134,9 @@ public final class Grader {
                             100 * sc.tolerance());
                     msg = passed ? "" : "the image differs from the reference: " + metric
                             + " (your render, the reference and the difference are shown side by side)";
-                    shown = new GradeReport.Images(mine, refBytes, png(c.diff()), metric);
+                    shown = new GradeReport.Images(mine, refBytes, png(c.diff()), metric,
+                            passed ? "" : PixelFeedback.valid(pixels.get(i)));
+                    msg += passed ? "" : PixelFeedback.summaryLine(shown.pixels());
                 } catch (IOException | RuntimeException e) {
                     msg = "the rendered image could not be compared: " + e.getMessage();
                     shown = new GradeReport.Images(null, refBytes, null, "");

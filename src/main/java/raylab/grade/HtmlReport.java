@@ -339,6 +339,9 @@ final class HtmlReport {
                         .append(ImageCompare.PIXEL_THRESHOLD).append("/255.</div>");
             }
         }
+        if (!t.passed()) {
+            b.append(PixelFeedback.html(im)); // issue 40: the worst pixels' ray trees
+        }
         b.append("</div>\n");
     }
 

@@ -45,7 +45,7 @@ class GradedVariantsTest {
         all = Assignments.load(root);
     }
 
-    private JsonNode grade(Path sub, long seed, Path out, String... milestones) throws IOException {
+    static JsonNode grade(Path sub, long seed, Path out, String... milestones) throws IOException {
         Files.createDirectories(out);
         List<String> args = new ArrayList<>(List.of("grade", sub.toString(), "--out", out.toString(), "--root",
                 root.toString(), "--quiet", "--test-timeout", "30", "--milestone-timeout", "300", "--scene-timeout", "120",
@@ -61,7 +61,7 @@ class GradedVariantsTest {
         return JSON.readTree(out.resolve("results.json").toFile());
     }
 
-    private static JsonNode scene(JsonNode r, String sceneFile) {
+    static JsonNode scene(JsonNode r, String sceneFile) {
         for (JsonNode t : r.get("tests")) {
             if (t.get("name").asText().endsWith("/" + sceneFile)) {
                 return t;

@@ -134,6 +134,8 @@ public final class Release {
         assignments.all().forEach(a -> a.files().forEach(f -> studentFiles.add(f.path())));
         out.put(raylab.course.GradedBuild.MANIFEST, raylab.course.GradedBuild.manifestText(out, studentFiles,
                 raylab.course.JavaBuild.ownClassPath()).getBytes(StandardCharsets.UTF_8));
+        // What raylab inspect and check compare a student's ray trees with: data, made by the reference.
+        ReferenceTraces.add(root, out);
         out.put("README.md", StarterReadme.render(root, spec.readmeTemplate(), assignments)
                 .getBytes(StandardCharsets.UTF_8));
         Set<String> exec = new HashSet<>();

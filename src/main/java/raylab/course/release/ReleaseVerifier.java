@@ -319,6 +319,8 @@ public final class ReleaseVerifier {
         }
         out.add(Check.of("assignment descriptions readable, without hidden tests, their files present", desc,
                 assignments.ids().size() + " milestones"));
+        out.add(Check.of("reference ray traces of the published scenes match their reference images",
+                ReferenceTraces.problems(starter, files), ReferenceTraces.published(files).size() + " scenes"));
 
         List<String> tables = new ArrayList<>();
         for (Assignment a : assignments.all()) {
