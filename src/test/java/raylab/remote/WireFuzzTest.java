@@ -1,10 +1,11 @@
 package raylab.remote;
 
 import java.io.ByteArrayInputStream;
-import java.io.ByteArrayOutputStream;
 import java.io.DataInputStream;
 import java.io.EOFException;
 import java.io.IOException;
+import java.io.InputStream;
+import java.util.ArrayList;
 import java.util.Arrays;
 import java.util.List;
 
@@ -73,9 +74,9 @@ class WireFuzzTest {
     }
 
     /** Reads every frame of {@code stream} as the trusted side does, until its clean end. */
-    static void readAll(byte[] stream) throws Wire.ProtocolException {
+    static void readAll(InputStream stream) throws Wire.ProtocolException {
         TrustedRefs refs = new TrustedRefs();
-        DataInputStream in = new DataInputStream(new ByteArrayInputStream(stream));
+        DataInputStream in = new DataInputStream(stream);
         while (true) {
             Wire.Frame f;
             try {
@@ -125,15 +126,17 @@ class WireFuzzTest {
      * The bytes an input stands for, so that small inputs can stand for huge frames: an input that
      * starts with {@code "RL*"} is a list of pieces {@code [byte k][k bytes][int r]}, the k bytes
      * repeated r times (big-endian r; a piece cut short is taken as far as it goes), at most
-     * {@link #EXPANDED_CAP} bytes in all; any other input is its own bytes.
+     * {@link #EXPANDED_CAP} bytes in all, produced as they are read (nothing is held but the
+     * pieces); any other input is its own bytes.
      */
-    static byte[] expand(byte[] data) {
+    static InputStream expand(byte[] data) {
         if (data.length < 3 || data[0] != 'R' || data[1] != 'L' || data[2] != '*') {
-            return data;
+            return new ByteArrayInputStream(data);
         }
-        ByteArrayOutputStream out = new ByteArrayOutputStream();
+        List<byte[]> pieces = new ArrayList<>();
+        List<Long> repeats = new ArrayList<>();
         int pos = 3;
-        while (pos < data.length && out.size() < EXPANDED_CAP) {
+        while (pos < data.length) {
             int k = data[pos++] & 0xff;
             byte[] piece = Arrays.copyOfRange(data, pos, Math.min(data.length, pos + k));
             pos += piece.length;
@@ -145,10 +148,43 @@ class WireFuzzTest {
             } else {
                 pos = data.length;
             }
-            for (long i = 0; i < r && piece.length > 0 && out.size() < EXPANDED_CAP; i++) {
-                out.write(piece, 0, Math.min(piece.length, EXPANDED_CAP - out.size()));
+            if (piece.length > 0 && r > 0) {
+                pieces.add(piece);
+                repeats.add(r);
             }
         }
-        return out.toByteArray();
+        return new InputStream() {
+            int piece;
+            long done;
+            int at;
+            long left = EXPANDED_CAP;
+
+            @Override
+            public int read() {
+                byte[] one = new byte[1];
+                return read(one, 0, 1) < 0 ? -1 : one[0] & 0xff;
+            }
+
+            @Override
+            public int read(byte[] b, int off, int len) {
+                int n = 0;
+                while (n < len && left > 0 && piece < pieces.size()) {
+                    byte[] p = pieces.get(piece);
+                    int k = (int) Math.min(Math.min(len - n, p.length - at), left);
+                    System.arraycopy(p, at, b, off + n, k);
+                    n += k;
+                    left -= k;
+                    at += k;
+                    if (at == p.length) {
+                        at = 0;
+                        if (++done == repeats.get(piece)) {
+                            done = 0;
+                            piece++;
+                        }
+                    }
+                }
+                return n == 0 && len > 0 ? -1 : n;
+            }
+        };
     }
 }

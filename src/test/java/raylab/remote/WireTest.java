@@ -222,4 +222,30 @@ class WireTest {
         Wire.ProtocolException e = assertThrows(Wire.ProtocolException.class, () -> Wire.readValue(in, null));
         assertEquals("more than " + Wire.MAX_VALUES + " values in one frame", e.getMessage());
     }
+
+    /** What each saved input of WireFuzzTest is, and that the reader refuses it as it should. */
+    @Test
+    void theFuzzersSavedInputsAreRefusedForWhatTheyAre() throws Exception {
+        java.nio.file.Path dir = java.nio.file.Path.of("src/test/resources/raylab/remote/WireFuzzTestInputs/frames");
+        String deep = "values nested more than " + Wire.MAX_DEPTH + " deep";
+        java.util.Map<String, String> expected = new java.util.TreeMap<>(java.util.Map.of(
+                "nested-24mb", deep, "deep-lists", deep, "deep-lights", deep, "deep-records", deep,
+                "declared-64mb", "frame cut short (" + Wire.MAX_FRAME + " bytes declared)",
+                "over-max", "bad frame length " + (Wire.MAX_FRAME + 1),
+                "string-overflow", "frame too short (" + Integer.MAX_VALUE + " bytes wanted, 3 left)",
+                "well-formed", "(read whole)"));
+        java.util.Map<String, String> got = new java.util.TreeMap<>();
+        try (var files = java.nio.file.Files.list(dir)) {
+            for (java.nio.file.Path f : (Iterable<java.nio.file.Path>) files::iterator) {
+                String said = "(read whole)";
+                try {
+                    WireFuzzTest.readAll(WireFuzzTest.expand(java.nio.file.Files.readAllBytes(f)));
+                } catch (Wire.ProtocolException e) {
+                    said = e.getMessage();
+                }
+                got.put(f.getFileName().toString(), said);
+            }
+        }
+        assertEquals(expected, got);
+    }
 }
