@@ -121,6 +121,15 @@ class PlaneMilestoneTest {
         assertTrue(Files.exists(dir.resolve("starter/src/main/java/raylab/surface/PlaneType.java"))
                 && Files.exists(dir.resolve("starter/" + added.get(2))), "the scene entry ships with the starter");
 
+        // The scene schema knows the plane, in the starter and in the instructor's tree.
+        assertTrue(rel.out().contains("updated scenes/scene.schema.json with the surface types plane"), rel.out());
+        JsonNode schema = new ObjectMapper().readTree(dir.resolve("starter/scenes/scene.schema.json").toFile());
+        assertEquals("[\"type\",\"point\",\"normal\",\"material\"]", schema.at("/$defs/plane/required").toString());
+        assertEquals("plane", schema.at("/$defs/plane/properties/type/const").asText());
+        assertEquals("[\"sphere\",\"box\",\"triangle\",\"mesh\",\"plane\"]",
+                schema.at("/$defs/surface/properties/type/enum").toString());
+        assertEquals(schema, new ObjectMapper().readTree(course.resolve("scenes/scene.schema.json").toFile()));
+
         String reference = Files.readString(course.resolve(added.get(0)));
         Map<String, JsonNode> correct = grade(cp, course, "correct",
                 SolutionRegions.toStudent("Plane.java", reference, Set.of("plane")));
