@@ -74,6 +74,15 @@ public interface SurfaceType {
         return s;
     }
 
+    /**
+     * What {@code raylab trace} adds to its line about a surface the eye ray missed or touched:
+     * "; the ray is parallel to the plane (n·d = 0)", or "" (the default). Called for every
+     * surface: answer "" for one that is not of this type.
+     */
+    default String traceNote(Surface s, raylab.ray.Ray ray) {
+        return "";
+    }
+
     /** A surface's keys as the loader reads them, with its messages ({@code file:line:col}). */
     interface Fields {
         boolean has(String key);

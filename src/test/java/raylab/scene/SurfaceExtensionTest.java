@@ -208,4 +208,22 @@ class SurfaceExtensionTest {
         assertTrue(r.out().startsWith("refused: ") && r.out().contains("case 'a ray parallel to the floor misses': \"surface\": missing required key \"normal\" in a plane"),
                 r.out() + r.err());
     }
+
+    @Test
+    void traceSaysWhatThePlaneTypeKnowsAboutAMiss() throws Exception {
+        // An orthographic view along -z: every eye ray is parallel to the wall x = 5.
+        Files.writeString(dir.resolve("wall.json"), """
+                {
+                  "image": {"width": 8, "height": 8},
+                  "camera": {"type": "orthographic", "eye": [0, 0, 5], "viewDirection": [0, 0, -1], "up": [0, 1, 0],
+                             "viewHeight": 4},
+                  "materials": {"n": {"type": "normals"}},
+                  "surfaces": [{"type": "plane", "name": "wall", "point": [5, 0, 0], "normal": [1, 0, 0], "material": "n"}]
+                }
+                """);
+        Ran r = raylab(true, "trace", dir.resolve("wall.json").toString(), "--pixel", "4", "4");
+        assertEquals(0, r.status(), r.out() + r.err());
+        assertTrue(r.out().contains("\"wall\": ") && r.out().contains("; the ray is parallel to the plane (n·d = 0)"),
+                r.out());
+    }
 }
