@@ -233,7 +233,12 @@ final class ContractCheck {
             return n.dot(ray.p.minus(tr.a)) == 0 ? "; the ray lies in the triangle's plane (n·d = 0 and n·(p - a) = 0)"
                     : "; the ray is parallel to the triangle's plane (n·d = 0)";
         }
-        return "";
+        // A surface type registered on the class path says what it knows (raylab.scene.SurfaceType).
+        StringBuilder note = new StringBuilder();
+        for (raylab.scene.SurfaceType t : raylab.scene.SurfaceTypes.extensions().values()) {
+            note.append(t.traceNote(s, ray));
+        }
+        return note.toString();
     }
 
     private static void flatten(Surface s, List<Surface> out) {

@@ -49,6 +49,40 @@ public interface SurfaceType {
      */
     void move(ObjectNode surface, double[] d);
 
+    /**
+     * Its entry under {@code $defs} of {@code scenes/scene.schema.json} (JSON Schema 2020-12),
+     * which {@code raylab release} merges into the starter's schema and the instructor's. The
+     * default: an object with exactly {@link #keys()} (any value, {@code "type"} this type's)
+     * and {@link #requiredKeys()}; override it to describe and type each key.
+     */
+    default ObjectNode schema() {
+        ObjectNode s = new com.fasterxml.jackson.databind.ObjectMapper().createObjectNode();
+        s.put("description", description().substring(0, 1).toUpperCase(java.util.Locale.ROOT)
+                + description().substring(1) + ".");
+        s.put("type", "object");
+        s.put("additionalProperties", false);
+        ObjectNode props = s.putObject("properties");
+        for (String k : keys()) {
+            ObjectNode p = props.putObject(k);
+            if (k.equals("type")) {
+                p.put("const", type());
+            } else if (k.equals("name") || k.equals("material")) {
+                p.put("type", "string");
+            }
+        }
+        requiredKeys().forEach(s.putArray("required")::add);
+        return s;
+    }
+
+    /**
+     * What {@code raylab trace} adds to its line about a surface the eye ray missed or touched:
+     * "; the ray is parallel to the plane (n·d = 0)", or "" (the default). Called for every
+     * surface: answer "" for one that is not of this type.
+     */
+    default String traceNote(Surface s, raylab.ray.Ray ray) {
+        return "";
+    }
+
     /** A surface's keys as the loader reads them, with its messages ({@code file:line:col}). */
     interface Fields {
         boolean has(String key);

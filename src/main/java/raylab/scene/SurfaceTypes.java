@@ -48,6 +48,53 @@ public final class SurfaceTypes {
         }
     }
 
+    /**
+     * The scene schema ({@code scenes/scene.schema.json}) with every registered type's
+     * {@link SurfaceType#schema()} under {@code $defs} and among the surface types; the text
+     * unchanged when none is registered or all are in it already.
+     */
+    public static String schemaWithExtensions(String schemaText) throws java.io.IOException {
+        if (EXTENSIONS.isEmpty()) {
+            return schemaText;
+        }
+        com.fasterxml.jackson.databind.ObjectMapper json = new com.fasterxml.jackson.databind.ObjectMapper();
+        com.fasterxml.jackson.databind.node.ObjectNode schema = (com.fasterxml.jackson.databind.node.ObjectNode) json.readTree(schemaText);
+        com.fasterxml.jackson.databind.node.ObjectNode defs = (com.fasterxml.jackson.databind.node.ObjectNode) schema.get("$defs");
+        com.fasterxml.jackson.databind.node.ObjectNode surface = (com.fasterxml.jackson.databind.node.ObjectNode) defs.get("surface");
+        com.fasterxml.jackson.databind.node.ArrayNode types = (com.fasterxml.jackson.databind.node.ArrayNode) surface.get("properties")
+                .get("type").get("enum");
+        com.fasterxml.jackson.databind.node.ArrayNode cases = (com.fasterxml.jackson.databind.node.ArrayNode) surface.get("allOf");
+        boolean changed = false;
+        for (SurfaceType t : EXTENSIONS.values()) {
+            if (!t.schema().equals(defs.get(t.type()))) {
+                defs.set(t.type(), t.schema());
+                changed = true;
+            }
+            boolean listed = false;
+            for (com.fasterxml.jackson.databind.JsonNode v : types) {
+                listed |= v.asText().equals(t.type());
+            }
+            if (!listed) {
+                types.add(t.type());
+                com.fasterxml.jackson.databind.node.ObjectNode c = cases.addObject();
+                com.fasterxml.jackson.databind.node.ObjectNode cond = c.putObject("if");
+                cond.putObject("properties").putObject("type").put("const", t.type());
+                cond.putArray("required").add("type");
+                c.putObject("then").put("$ref", "#/$defs/" + t.type());
+                changed = true;
+            }
+        }
+        if (!changed) {
+            return schemaText;
+        }
+        List<String> all = new ArrayList<>();
+        types.forEach(v -> all.add(v.asText()));
+        surface.put("description", "Surface: " + String.join(", ", all) + ".");
+        ((com.fasterxml.jackson.databind.node.ObjectNode) surface.get("properties").get("type"))
+                .put("description", "The surface type: one of " + String.join(", ", all) + ".");
+        return json.writerWithDefaultPrettyPrinter().writeValueAsString(schema) + "\n";
+    }
+
     private static Map<String, SurfaceType> load() {
         Map<String, SurfaceType> out = new LinkedHashMap<>();
         List<String> problems = new ArrayList<>();

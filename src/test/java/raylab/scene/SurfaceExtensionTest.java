@@ -70,17 +70,6 @@ class SurfaceExtensionTest {
             }
             """;
 
-    private static final String CASES = """
-            [
-              {"name": "a ray straight down hits the floor at t = 4", "points": 1,
-               "surface": {"type": "plane", "point": [0, -1, 0], "normal": [0, 1, 0]},
-               "ray": {"p": [0, 3, 0], "d": [0, -1, 0]}, "expect": {"hit": true, "t": 4, "point": [0, -1, 0], "normal": [0, 1, 0]}},
-              {"name": "a ray parallel to the floor misses", "points": 1,
-               "surface": {"type": "plane", "point": [0, -1, 0], "normal": [0, 1, 0]},
-               "ray": {"p": [0, 0, 0], "d": [1, 0, 0]}, "expect": {"hit": false}}
-            ]
-            """;
-
     /** Runs the milestone's data cases as the grader's case test does (DataCases, CaseCheck). */
     private static final String PROBE = """
             public class CaseProbe {
@@ -119,7 +108,7 @@ class SurfaceExtensionTest {
         Files.writeString(root.resolve("scenes/plane.json"), SCENE);
         Files.writeString(root.resolve("assignments/07-plane/assignment.json"), ASSIGNMENT);
         Files.createDirectories(root.resolve("assignments/07-plane/cases"));
-        Files.writeString(root.resolve("assignments/07-plane/cases/plane.json"), CASES);
+        Files.copy(ext.resolve("assignments/07-plane/cases/plane.json"), root.resolve("assignments/07-plane/cases/plane.json"));
         // The probe, and a buggy plane (t with the wrong sign) compiled apart, put first on a class path.
         Path probe = Files.createDirectories(dir.resolve("probe-src")).resolve("CaseProbe.java");
         Files.writeString(probe, PROBE);
@@ -206,16 +195,35 @@ class SurfaceExtensionTest {
         assertEquals("passed: a ray parallel to the floor misses", lines.get(1));
 
         Path cases = root.resolve("assignments/07-plane/cases/plane.json");
-        String noNormal = CASES.replace(", \"normal\": [0, 1, 0]},\n   \"ray\": {\"p\": [0, 0, 0]",
+        String cases0 = Files.readString(cases);
+        String noNormal = cases0.replace(", \"normal\": [0, 1, 0]},\n   \"ray\": {\"p\": [0, 0, 0]",
                 "},\n   \"ray\": {\"p\": [0, 0, 0]");
-        assertNotEquals(CASES, noNormal, "the second case lost its normal");
+        assertNotEquals(cases0, noNormal, "the second case lost its normal");
         Files.writeString(cases, noNormal);
         try {
             r = java(classes + File.pathSeparator, "CaseProbe", root.toString());
         } finally {
-            Files.writeString(cases, CASES);
+            Files.writeString(cases, cases0);
         }
         assertTrue(r.out().startsWith("refused: ") && r.out().contains("case 'a ray parallel to the floor misses': \"surface\": missing required key \"normal\" in a plane"),
                 r.out() + r.err());
+    }
+
+    @Test
+    void traceSaysWhatThePlaneTypeKnowsAboutAMiss() throws Exception {
+        // An orthographic view along -z: every eye ray is parallel to the wall x = 5.
+        Files.writeString(dir.resolve("wall.json"), """
+                {
+                  "image": {"width": 8, "height": 8},
+                  "camera": {"type": "orthographic", "eye": [0, 0, 5], "viewDirection": [0, 0, -1], "up": [0, 1, 0],
+                             "viewHeight": 4},
+                  "materials": {"n": {"type": "normals"}},
+                  "surfaces": [{"type": "plane", "name": "wall", "point": [5, 0, 0], "normal": [1, 0, 0], "material": "n"}]
+                }
+                """);
+        Ran r = raylab(true, "trace", dir.resolve("wall.json").toString(), "--pixel", "4", "4");
+        assertEquals(0, r.status(), r.out() + r.err());
+        assertTrue(r.out().contains("\"wall\": ") && r.out().contains("; the ray is parallel to the plane (n·d = 0)"),
+                r.out());
     }
 }

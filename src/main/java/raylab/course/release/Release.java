@@ -107,6 +107,10 @@ public final class Release {
                 bytes = HandoutTable.update(text, GradingPlan.of(root, owner)).getBytes(StandardCharsets.UTF_8);
             } else if (rel.equals("pom.xml")) {
                 bytes = starterPom(new String(bytes, StandardCharsets.UTF_8)).getBytes(StandardCharsets.UTF_8);
+            } else if (rel.equals(SCENE_SCHEMA)) {
+                // Surface types registered on the class path (raylab.scene.SurfaceType) join the schema.
+                bytes = raylab.scene.SurfaceTypes.schemaWithExtensions(new String(bytes, StandardCharsets.UTF_8))
+                        .getBytes(StandardCharsets.UTF_8);
             } else if (rel.endsWith(".java")) {
                 String text = new String(bytes, StandardCharsets.UTF_8);
                 if (SolutionRegions.hasRegions(text) || assignments.ownerOf(rel).isPresent()) {
@@ -176,6 +180,9 @@ public final class Release {
         }
         return pom.substring(0, start) + pom.substring(end);
     }
+
+    /** The scene format's JSON Schema. */
+    static final String SCENE_SCHEMA = "scenes/scene.schema.json";
 
     /** The grader's data-case checker, and where the starter gets a copy when some case is visible. */
     static final String CASE_CHECK = "grader/tests/raylab/cases/CaseCheck.java";

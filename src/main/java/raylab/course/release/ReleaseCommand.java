@@ -56,6 +56,17 @@ public final class ReleaseCommand implements Callable<Integer> {
             for (String h : HandoutTable.refresh(project)) {
                 w.println("updated the instructor's handout " + h + " (title total and grading table from assignment.json)");
             }
+            // ... and the instructor's scene schema knows the surface types registered on the class path.
+            Path schema = project.resolve(Release.SCENE_SCHEMA);
+            if (Files.isRegularFile(schema)) {
+                String text = Files.readString(schema, java.nio.charset.StandardCharsets.UTF_8);
+                String merged = raylab.scene.SurfaceTypes.schemaWithExtensions(text);
+                if (!merged.equals(text)) {
+                    Files.writeString(schema, merged, java.nio.charset.StandardCharsets.UTF_8);
+                    w.println("updated " + Release.SCENE_SCHEMA + " with the surface types " + String.join(", ",
+                            raylab.scene.SurfaceTypes.extensions().keySet()) + " (raylab.scene.SurfaceType)");
+                }
+            }
             written = Release.write(project, out, force);
         } catch (IOException e) {
             throw new UserError("release: " + e.getMessage(), 1);

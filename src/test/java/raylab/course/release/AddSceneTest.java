@@ -59,18 +59,23 @@ class AddSceneTest {
 
     static Path copy(Path root, Path to) throws IOException {
         for (String d : List.of("assignments", "scenes", "grader", "src/main/java", "src/test/java")) {
-            try (Stream<Path> s = Files.walk(root.resolve(d))) {
-                for (Path p : (Iterable<Path>) s::iterator) {
-                    Path t = to.resolve(root.relativize(p).toString());
-                    if (Files.isDirectory(p)) {
-                        Files.createDirectories(t);
-                    } else {
-                        Files.copy(p, t);
-                    }
+            copyTree(root.resolve(d), to.resolve(d));
+        }
+        return to;
+    }
+
+    /** Copies a folder and everything in it. */
+    static void copyTree(Path from, Path to) throws IOException {
+        try (Stream<Path> s = Files.walk(from)) {
+            for (Path p : (Iterable<Path>) s::iterator) {
+                Path t = to.resolve(from.relativize(p).toString());
+                if (Files.isDirectory(p)) {
+                    Files.createDirectories(t);
+                } else {
+                    Files.copy(p, t);
                 }
             }
         }
-        return to;
     }
 
     static String run(int expected, String... args) {

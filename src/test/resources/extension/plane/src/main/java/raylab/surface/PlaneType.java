@@ -7,6 +7,7 @@ import com.fasterxml.jackson.databind.node.ObjectNode;
 
 import raylab.material.Material;
 import raylab.math.Vec3;
+import raylab.ray.Ray;
 import raylab.scene.SceneException;
 import raylab.scene.SurfaceType;
 
@@ -39,6 +40,14 @@ public final class PlaneType implements SurfaceType {
             throw f.fail("normal", "a plane's normal must not be [0, 0, 0]");
         }
         return new Plane(f.vec3("point"), n, material, name);
+    }
+
+    @Override
+    public String traceNote(Surface s, Ray ray) {
+        if (s instanceof Plane p && p.normal.dot(ray.d) == 0) {
+            return "; the ray is parallel to the plane (n·d = 0)";
+        }
+        return "";
     }
 
     @Override
