@@ -197,7 +197,12 @@ class BoundaryDifferentialTest {
         studentPath.addAll(StudentProcessTest.classDirs());
         List<String> studentCmd = new ArrayList<>(StudentProcess.javaCommand(studentPath, 128, List.copyOf(served)));
         Path frames = out.resolve("frames.bin");
-        studentCmd.add(1, "-D" + StudentServer.RECORD + "=" + frames);
+        // After the java binary (the command may start with the channel's wrapper).
+        int java = 0;
+        while (!studentCmd.get(java).endsWith("/bin/java")) {
+            java++;
+        }
+        studentCmd.add(java + 1, "-D" + StudentServer.RECORD + "=" + frames);
         Path config = out.resolve("student.properties");
         Remote.writeConfig(config, new StudentProcess.Config(studentCmd, null, served, 60_000, 1));
         List<String> cp = new ArrayList<>();
