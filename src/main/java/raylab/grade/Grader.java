@@ -295,6 +295,15 @@ public final class Grader {
             return new GradeReport.Milestone(a.id(), a.title(), List.of(GradeReport.FAILED + setup.broken.get(a.id())),
                     List.of());
         }
+        for (Assignment.GradedScene sc : a.scenes()) {
+            GradedScenes.Graded g = graded.get(sc.scene());
+            if ((g == null || !g.varied()) && references.get(sc.reference()) == null) {
+                // Scored as published without its reference: no point of it could be decided.
+                return new GradeReport.Milestone(a.id(), a.title(), List.of(GradeReport.FAILED + "the reference image "
+                        + sc.reference() + " of the graded scene " + sc.scene() + " is missing (render it with"
+                        + " ./raylab reference " + sc.scene() + ")"), List.of());
+            }
+        }
         Path mdir = work.resolve(a.id());
         Files.createDirectories(mdir);
         List<String> notes = new ArrayList<>();

@@ -63,7 +63,11 @@ public final class Reports {
     /** A summary for the top of every report. */
     static String summary(GradeReport r) {
         StringBuilder b = new StringBuilder();
-        b.append("Score: ").append(fmt(r.score())).append(" / ").append(fmt(r.maxScore())).append('\n');
+        if (r.failed()) {
+            b.append("Grading failed, no points decided: ").append(r.failure()).append('\n');
+        } else {
+            b.append("Score: ").append(fmt(r.score())).append(" / ").append(fmt(r.maxScore())).append('\n');
+        }
         for (GradeReport.Milestone m : r.milestones()) {
             b.append(String.format(Locale.ROOT, "  %-10s %6s / %-6s %s%n", m.id(), fmt(m.score()), fmt(m.maxScore()),
                     m.title()));

@@ -96,6 +96,22 @@ class CourseCheckTest {
         assertEquals(1, lines.size(), "one clear line: " + r.err());
         assertTrue(lines.get(0).contains("do not compile") && lines.get(0).contains("SphereHiddenTest.java"), lines.get(0));
         assertGradingFails(root, dir.resolve("cache-compile"), "SphereHiddenTest.java");
+        // Only what it must: a grading of box alone (PrairieLearn's per-milestone question) is not touched.
+        Path sub = Files.createDirectories(dir.resolve("sub-box"));
+        Files.copy(Path.of("src/main/java/raylab/surface/Box.java"), sub.resolve("Box.java"));
+        Grader.Options o = Grader.Options.defaults(root).withMilestones(List.of("box"));
+        o = new Grader.Options(root, o.milestones(), o.limits(), o.sceneLimit(), o.sceneHeapMb(),
+                dir.resolve("cache-compile"), o.sandboxUser(), o.parallel(), o.sandboxMode());
+        Path out = dir.resolve("graded-box");
+        int status = GradeCommand.run(o, 5L, sub, out, s -> { }, true,
+                new PrintStream(new ByteArrayOutputStream(), true, StandardCharsets.UTF_8), null);
+        assertEquals(0, status, "box is graded");
+        JsonNode box = JSON.readTree(out.resolve("results.json").toFile());
+        double max = 0;
+        for (JsonNode t : box.get("tests")) {
+            max += t.get("max_score").asDouble();
+        }
+        assertEquals(max, box.get("score").asDouble(), 1e-6, "the reference box scores full marks: " + box.get("output"));
     }
 
     @Test

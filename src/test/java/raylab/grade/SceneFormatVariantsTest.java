@@ -95,8 +95,7 @@ class SceneFormatVariantsTest {
         ObjectNode scene = scene(r);
         ObjectNode variant = spec(r, scene);
         Files.createDirectories(root.resolve("scenes/meshes"));
-        Files.writeString(root.resolve("scenes/meshes/quad.obj"),
-                "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvn 0 0 1\nf 1//1 2//1 3//1 4//1\n", StandardCharsets.US_ASCII);
+        Files.writeString(root.resolve("scenes/meshes/quad.obj"), QUAD, StandardCharsets.US_ASCII);
         Path file = root.resolve("scenes/fuzz.json");
         Files.writeString(file, JSON.writerWithDefaultPrettyPrinter().writeValueAsString(scene));
         String what = "scene seed " + seed + ": " + scene + " variant " + variant;
@@ -166,7 +165,10 @@ class SceneFormatVariantsTest {
 
     // ---- the generator: valid scenes in every form of docs/scene-format.md ----
 
-    private static ObjectNode scene(Random r) {
+    /** The mesh the generated scenes may use, at scenes/meshes/quad.obj. */
+    static final String QUAD = "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvn 0 0 1\nf 1//1 2//1 3//1 4//1\n";
+
+    static ObjectNode scene(Random r) {
         ObjectNode s = JSON.createObjectNode();
         if (r.nextBoolean()) {
             s.put("$schema", "../scene.schema.json");
@@ -283,7 +285,7 @@ class SceneFormatVariantsTest {
     }
 
     /** A spec valid for the scene: its camera type's moves, lights when it has some, named surfaces. */
-    private static ObjectNode spec(Random r, ObjectNode scene) {
+    static ObjectNode spec(Random r, ObjectNode scene) {
         ObjectNode v = JSON.createObjectNode();
         ObjectNode cam = v.putObject("camera");
         if (scene.get("camera").get("type").asText().equals("perspective")) {

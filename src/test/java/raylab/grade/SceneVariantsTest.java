@@ -275,7 +275,11 @@ class SceneVariantsTest {
         Run g = run("grade", Files.createDirectories(dir.resolve("empty")).toString(), "--root", p.toString(), "--out", out.toString(), "--quiet",
                 "--cache", dir.resolve("cache").toString());
         assertEquals(1, g.status(), "a bad spec: the grader could not grade");
-        assertTrue(Files.readString(out.resolve("results.json")).contains("scenes[2].variant.lights.move[1]"),
-                "results.json names the bad spec");
+        // The student reads that the grading failed (no score, no instructor path); the instructors' report has the cause.
+        JsonNode results = JSON.readTree(out.resolve("results.json").toFile());
+        assertFalse(results.has("score"), results.toString());
+        assertEquals(GradeReport.FAILED_FOR_STUDENTS, results.get("output").asText());
+        assertTrue(Files.readString(out.resolve("report.html")).contains("scenes[2].variant.lights.move[1]"),
+                "the instructors' report names the bad spec");
     }
 }
