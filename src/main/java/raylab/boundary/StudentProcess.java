@@ -174,8 +174,10 @@ public final class StudentProcess implements AutoCloseable {
             long since = answering;
             long wall = System.nanoTime() - callStartWall - trustedWall - (since == 0 ? 0 : System.nanoTime() - since);
             long own = wall - Math.min(Math.max(0, wall), waited - waitedBase);
-            ownNow = Math.max(ownNow, Math.max(own, used));
-            studentTime = ownBefore + ownNow;
+            if (!starting) { // a JVM's start is not the student's time
+                ownNow = Math.max(ownNow, Math.max(own, used));
+                studentTime = ownBefore + ownNow;
+            }
             long budget = Math.max(starting ? 30_000 : 0, config.callBudgetMillis()) * 1_000_000L;
             if (used > budget || own > 3 * budget + 5_000_000_000L) {
                 timedOut = true;
