@@ -141,8 +141,9 @@ public final class CheckCommand implements Callable<Integer> {
         out.println(o.assignment().id() + ": points you can check here (the autograder gives the same)");
         for (MilestoneCheck.Outcome.Row r : rows) {
             raylab.course.GradingPlan.Item i = r.item();
-            String status = i.kind() == raylab.course.GradingPlan.Kind.SCENE ? (r.passed() ? "MATCH  " : "DIFFERS")
-                    : (r.passed() ? "pass   " : "FAIL   ");
+            String status = i.kind() == raylab.course.GradingPlan.Kind.SCENE ? o.scenes().stream()
+                    .filter(s -> s.scene().scene().equals(i.key())).findFirst().map(CheckCommand::sceneWord)
+                    .orElse(r.passed() ? "MATCH  " : "DIFFERS") : (r.passed() ? "pass   " : "FAIL   ");
             String pts = raylab.course.GradingPlan.points(r.passed() ? i.cents() : 0) + "/"
                     + raylab.course.GradingPlan.points(i.cents());
             String name = switch (i.kind()) {
@@ -175,7 +176,7 @@ public final class CheckCommand implements Callable<Integer> {
         String t = s == null ? "" : s.strip();
         int nl = t.indexOf('\n');
         t = nl < 0 ? t : t.substring(0, nl);
-        return t.length() <= 160 ? t : t.substring(0, 157) + "...";
+        return raylab.course.MilestoneCheck.oneLine(t, 160);
     }
 
     static void printTable(PrintWriter out, List<MilestoneCheck.Outcome> outcomes) {

@@ -112,6 +112,15 @@ final class ContractCheck {
             }
             boolean wrote = Double.compare(rec.t, before.t) != 0 || rec.point != before.point || rec.normal != before.normal
                     || rec.surface != before.surface;
+            if (!returned && !wrote && s instanceof raylab.surface.Box b && plane.contains("0/0") && meets(b, ray, before)) {
+                // The 0/0 case first: this miss breaks a rule, whatever the probe over all t says.
+                inTurn.add("    \"" + s.name() + "\": miss" + flag("the ray meets this box (it runs along a face,"
+                        + " inside the closed box) but intersect missed it: a slab with d = 0 divides 0 by 0 (NaN) when p"
+                        + " is on its plane; decide such a slab without dividing (inside when min <= p <= max)") + plane);
+                answers.add(inTurn.get(inTurn.size() - 1));
+                broken++;
+                continue;
+            }
             if (!returned && !wrote) {
                 inTurn.add("    \"" + s.name() + "\": miss (" + whyMissed(s, ray, before) + ")" + plane);
                 misses.add(inTurn.get(inTurn.size() - 1));
@@ -200,6 +209,30 @@ final class ContractCheck {
                     + TraceCommand.num(held.t) + " on \"" + held.surface.name() + "\"";
         }
         return "although asked over all t it hits at t = " + TraceCommand.num(t) + ", inside [tMin, tMax]";
+    }
+
+    /**
+     * Whether the ray meets the closed box within [tMin, tMax] and before a recorded hit: by slabs,
+     * a slab with d = 0 decided without dividing (inside when min <= p <= max).
+     */
+    static boolean meets(raylab.surface.Box b, Ray ray, IntersectionRecord held) {
+        double t0 = ray.tMin;
+        double t1 = held.hasHit() ? Math.min(ray.tMax, held.t) : ray.tMax;
+        for (int i = 0; i < 3; i++) {
+            double d = ray.d.get(i);
+            double p = ray.p.get(i);
+            if (d == 0) {
+                if (p < b.min.get(i) || p > b.max.get(i)) {
+                    return false;
+                }
+                continue;
+            }
+            double a = (b.min.get(i) - p) / d;
+            double c = (b.max.get(i) - p) / d;
+            t0 = Math.max(t0, Math.min(a, c));
+            t1 = Math.min(t1, Math.max(a, c));
+        }
+        return t0 <= t1;
     }
 
     /** "; the ray lies in the plane x = 1 of a face (a slab with d.x = 0)" and the like, or "". */

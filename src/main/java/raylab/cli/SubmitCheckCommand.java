@@ -34,7 +34,7 @@ import raylab.scene.Display;
             "(what you are about to upload): the files the grader takes from it, and a warning for everything else."},
         exitCodeListHeading = "%nExit status:%n",
         exitCodeList = {"0:at least one file will be graded", "1:no file would be graded, or a graded file is there twice",
-            "2:no such file, not a readable zip, or not run from the project folder"})
+            "2:no such file or tag, not a readable zip, or not run from the project folder"})
 public final class SubmitCheckCommand implements Callable<Integer> {
     /** At most this many files that are not graded are listed. */
     static final int LISTED = 15;
@@ -42,8 +42,9 @@ public final class SubmitCheckCommand implements Callable<Integer> {
     @Spec
     CommandSpec spec;
 
-    @Parameters(index = "0", arity = "0..1", paramLabel = "ZIP|FOLDER",
-            description = "The zip file or folder you will upload (default: this project's files).")
+    @Parameters(index = "0", arity = "0..1", paramLabel = "ZIP|FOLDER|TAG",
+            description = "The zip file or folder you will upload, or the git tag you pushed (Classroom 50)"
+                    + " (default: this project's files).")
     Path input;
 
     @Override
@@ -59,9 +60,36 @@ public final class SubmitCheckCommand implements Callable<Integer> {
         if (input == null) {
             return project(out, root, assignments);
         }
-        if (!Files.exists(input)) {
-            throw UserError.badInput(Display.path(input) + ": no such file or folder");
+        if (!Files.exists(input) && git(root, "rev-parse", "-q", "--verify", "refs/tags/" + input + "^{commit}") != null) {
+            // A tag (Classroom 50 grades its commit): its graded files, checked as a folder.
+            Path tagged = Files.createTempDirectory("raylab-tag");
+            try {
+                for (String f : studentFiles(assignments)) {
+                    String text = git(root, "show", input + ":" + f);
+                    if (text != null) {
+                        Files.createDirectories(tagged.resolve(f).getParent());
+                        Files.writeString(tagged.resolve(f), text, StandardCharsets.UTF_8);
+                    }
+                }
+                out.println("The commit of the tag '" + input + "':");
+                return check(out, root, assignments, tagged, input.toString());
+            } finally {
+                try (var walk = Files.walk(tagged)) {
+                    for (Path p : walk.sorted(java.util.Comparator.reverseOrder()).toList()) {
+                        Files.deleteIfExists(p);
+                    }
+                }
+            }
         }
+        if (!Files.exists(input)) {
+            throw UserError.badInput(Display.path(input) + ": no such file, folder or tag");
+        }
+        return check(out, root, assignments, input, Display.path(input));
+    }
+
+    /** A zip, a folder or a tag's files, read as the grader reads them; {@code shown} names it. */
+    private int check(PrintWriter out, Path root, List<Assignment> assignments, Path input, String shown)
+            throws IOException {
         Submission s;
         try {
             s = Submission.read(input, assignments);
@@ -69,7 +97,7 @@ public final class SubmitCheckCommand implements Callable<Integer> {
             throw UserError.badInput(Errors.oneLine(e.getMessage()));
         }
         out.println("The grader takes " + s.files().size() + " file" + (s.files().size() == 1 ? "" : "s") + " from "
-                + Display.path(input) + ":");
+                + shown + ":");
         for (Assignment a : assignments) {
             for (Assignment.StudentFile f : a.files()) {
                 String text = s.files().get(f.path());
@@ -140,6 +168,7 @@ public final class SubmitCheckCommand implements Callable<Integer> {
         out.println("Nothing else is graded: the grader uses its own copy of every other file.");
         boolean breaks = printDrift(out, GradedBuild.check(root, projectFiles(root, assignments), studentFiles(assignments),
                 withFirst(first)));
+        tagWarnings(root, assignments).forEach(out::println);
         out.println("To check a zip before uploading it: ./raylab submit-check FILE.zip");
         return present == 0 || breaks ? Main.FAILED : Main.OK;
     }
@@ -165,6 +194,65 @@ public final class SubmitCheckCommand implements Callable<Integer> {
                 + " shows why):");
         failing.forEach(n -> details.add("  FAIL " + n));
         return "NOT FINISHED: " + failing.size() + " of " + o.testCount() + " visible tests fail (below)";
+    }
+
+    /**
+     * Classroom 50 grades the commit a milestone's tag names, not the working tree: one warning
+     * for each graded file whose text differs from that commit's (an edit not committed, or
+     * committed after the tag was set) or that the commit does not hold (a file never added).
+     * Nothing outside a git repository or for a milestone without a tag.
+     */
+    static List<String> tagWarnings(Path root, List<Assignment> assignments) {
+        List<String> out = new ArrayList<>();
+        if (!Files.exists(root.resolve(".git"))) {
+            return out;
+        }
+        for (Assignment a : assignments) {
+            String tag = a.id();
+            if (git(root, "rev-parse", "-q", "--verify", "refs/tags/" + tag + "^{commit}") == null) {
+                continue;
+            }
+            for (Assignment.StudentFile f : a.files()) {
+                Path p = root.resolve(f.path());
+                if (!Files.isRegularFile(p)) {
+                    continue;
+                }
+                String tagged = git(root, "show", tag + ":" + f.path());
+                String now;
+                try {
+                    now = Files.readString(p, StandardCharsets.UTF_8);
+                } catch (IOException e) {
+                    continue;
+                }
+                if (tagged == null) {
+                    out.add("WARNING: " + f.path() + " is not in the commit of the tag '" + tag + "', which Classroom 50"
+                            + " grades: git add it, commit, then move the tag (git tag -f " + tag
+                            + " && git push -f origin " + tag + ")");
+                } else if (!tagged.equals(now)) {
+                    out.add("WARNING: " + f.path() + " differs from the commit of the tag '" + tag + "', which"
+                            + " Classroom 50 grades: commit it, then move the tag (git tag -f " + tag
+                            + " && git push -f origin " + tag + ")");
+                }
+            }
+        }
+        return out;
+    }
+
+    /** git's standard output, or null when it fails or is missing. */
+    private static String git(Path root, String... args) {
+        List<String> cmd = new ArrayList<>(List.of("git", "-C", root.toString()));
+        cmd.addAll(List.of(args));
+        try {
+            Process p = new ProcessBuilder(cmd).redirectError(ProcessBuilder.Redirect.DISCARD).start();
+            p.getOutputStream().close();
+            byte[] bytes = p.getInputStream().readAllBytes();
+            return p.waitFor() == 0 ? new String(bytes, StandardCharsets.UTF_8) : null;
+        } catch (IOException e) {
+            return null;
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+            return null;
+        }
     }
 
     /**

@@ -468,7 +468,12 @@ public final class MilestoneCheck {
         if (nl >= 0) {
             t = t.substring(0, nl).strip();
         }
-        return t.length() <= n ? t : t.substring(0, n - 3) + "...";
+        if (t.length() <= n) {
+            return t;
+        }
+        // Cut between words, never inside one ("C..."), unless a word is longer than half the line.
+        int cut = t.lastIndexOf(' ', n - 4);
+        return (cut > n / 2 ? t.substring(0, cut) : t.substring(0, n - 4)) + " ...";
     }
 
     private static String first(Path root, JavaBuild.Result r) {

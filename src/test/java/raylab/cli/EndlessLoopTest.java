@@ -139,4 +139,25 @@ class EndlessLoopTest {
                     "scene " + g.scene() + " names the loop:\n" + r[1]);
         }
     }
+
+    /**
+     * The grader (with its process boundary, where the student's code runs in a JVM of its own):
+     * each test that reaches the loop is reported with the same sentence, not as a bare timeout.
+     */
+    @org.junit.jupiter.api.Test
+    void theGraderNamesIt() throws Exception {
+        String method = "Lambertian.diffuse";
+        Path sub = Files.createDirectories(dir.resolve("submission"));
+        Files.copy(dir.resolve("src-" + method).resolve("raylab/material/Lambertian.java"), sub.resolve("Lambertian.java"));
+        Files.copy(ROOT.resolve("src/main/java/raylab/shading/Shading.java"), sub.resolve("Shading.java"));
+        Path results = dir.resolve("results");
+        java.io.StringWriter err = new java.io.StringWriter();
+        int status = Main.run(new java.io.PrintWriter(new java.io.StringWriter(), true), new java.io.PrintWriter(err, true),
+                "grade", sub.toString(), "--out", results.toString(), "--root", ROOT.toString(), "--quiet",
+                "--milestone", "lambert", "--test-timeout", "8", "--milestone-timeout", "240", "--scene-timeout", "10",
+                "--heap", "256", "--sandbox-user", "");
+        assertEquals(0, status, err::toString);
+        String report = Files.readString(results.resolve("results.json"));
+        assertNamed(method, report);
+    }
 }

@@ -112,10 +112,67 @@ class SubmitCheckTest {
         assertTrue(!out.contains("written"), out);
     }
 
+    static void git(Path repo, String... args) throws Exception {
+        List<String> cmd = new java.util.ArrayList<>(List.of("git", "-C", repo.toString(), "-c", "user.name=student",
+                "-c", "user.email=student@example.com", "-c", "commit.gpgsign=false", "-c", "tag.gpgsign=false"));
+        cmd.addAll(List.of(args));
+        Process p = new ProcessBuilder(cmd).redirectErrorStream(true).start();
+        String out = new String(p.getInputStream().readAllBytes(), StandardCharsets.UTF_8);
+        assertEquals(0, p.waitFor(), "git " + String.join(" ", args) + ": " + out);
+    }
+
+    /** Classroom 50 grades the tag's commit: an edit left out of it, and a file never added, are named. */
+    @Test
+    void editsLeftOutOfTheMilestonesTagAreNamed() throws Exception {
+        Path repo = Files.createDirectories(dir.resolve("repo"));
+        String sphere = "src/main/java/raylab/surface/Sphere.java";
+        String box = "src/main/java/raylab/surface/Box.java";
+        Files.createDirectories(repo.resolve(sphere).getParent());
+        Files.copy(Path.of(sphere), repo.resolve(sphere));
+        git(repo, "init", "-q");
+        git(repo, "add", sphere);
+        git(repo, "commit", "-q", "-m", "sphere");
+        git(repo, "tag", "sphere");
+        git(repo, "tag", "box");
+        List<raylab.course.Assignment> all = raylab.course.Assignments.load(Path.of("")).all();
+        assertEquals(List.of(), SubmitCheckCommand.tagWarnings(repo, all), "the working tree is what the tags hold");
+
+        Files.writeString(repo.resolve(sphere), Files.readString(repo.resolve(sphere)) + "// a fix after the tag\n");
+        Files.copy(Path.of(box), repo.resolve(box));
+        assertEquals(List.of("WARNING: " + sphere + " differs from the commit of the tag 'sphere', which Classroom 50"
+                + " grades: commit it, then move the tag (git tag -f sphere && git push -f origin sphere)",
+                "WARNING: " + box + " is not in the commit of the tag 'box', which Classroom 50 grades: git add it,"
+                + " commit, then move the tag (git tag -f box && git push -f origin box)"),
+                SubmitCheckCommand.tagWarnings(repo, all));
+    }
+
+    /** submit-check TAG: the files of the tag's commit, compiled as the grader builds them. */
+    @Test
+    void aTagIsCheckedAsItsCommit() throws Exception {
+        Path repo = Files.createDirectories(dir.resolve("tagged"));
+        CheckFeedbackTest.copyLayout(Path.of("").toAbsolutePath(), repo);
+        String box = "src/main/java/raylab/surface/Box.java";
+        Files.createDirectories(repo.resolve(box).getParent());
+        Files.writeString(repo.resolve(box), "package raylab.surface;\npublic class Box { int x = ; }\n");
+        git(repo, "init", "-q");
+        git(repo, "add", box);
+        git(repo, "commit", "-q", "-m", "box");
+        git(repo, "tag", "box");
+        Files.copy(Path.of(box), repo.resolve(box), java.nio.file.StandardCopyOption.REPLACE_EXISTING);
+        Process p = new ProcessBuilder(Path.of(System.getProperty("java.home"), "bin", "java").toString(), "-cp",
+                System.getProperty("java.class.path"), "raylab.cli.Main", "submit-check", "box").directory(repo.toFile())
+                .redirectErrorStream(true).start();
+        String out = new String(p.getInputStream().readAllBytes(), StandardCharsets.UTF_8);
+        assertEquals(1, p.waitFor(), out);
+        assertTrue(out.startsWith("The commit of the tag 'box':\nThe grader takes 1 file from box:"), out);
+        assertTrue(out.contains("DOES NOT COMPILE (as the grader builds it, so the milestone would score 0):\n"
+                + "  " + box + ":2: illegal start of expression"), "the tagged text, not the fixed working tree:\n" + out);
+    }
+
     @Test
     void aMissingZipIsBadInput() {
         String[] r = run("submit-check", dir.resolve("none.zip").toString());
         assertEquals("2", r[0]);
-        assertEquals("raylab: " + dir.resolve("none.zip") + ": no such file or folder", r[2].strip());
+        assertEquals("raylab: " + dir.resolve("none.zip") + ": no such file, folder or tag", r[2].strip());
     }
 }

@@ -73,4 +73,33 @@ class TraceSurfacesTest {
         }
         assertTrue(text.contains("  no hit: background rgb(0, 0, 0)"), text);
     }
+
+    /**
+     * A box lost to 0/0 (bugs3: the lecture's slabs without a case for d = 0) at the pixel whose
+     * ray runs along its face: the 0/0 case is said first, as a broken rule, never "every rule of
+     * intersect holds" nor "the line of the ray does not meet it". The reference Box at the same
+     * pixel (the test above) gets neither.
+     */
+    @Test
+    void aBoxLostToZeroOverZeroIsExplainedFirst() throws Exception {
+        Path scene = dir.resolve("planes.json");
+        Files.writeString(scene, SCENE);
+        Path bug = Path.of("src/test/resources/submissions/bugs3/Box.java");
+        raylab.course.JavaBuild.Result r = raylab.course.MilestoneBuild.compileOverlay(java.util.Map.of(
+                "raylab/surface/Box.java", Files.readString(bug)), dir.resolve("src"),
+                raylab.course.JavaBuild.ownClassPath(), dir.resolve("classes"));
+        assertTrue(r.success(), r.errors().toString());
+        Process p = new ProcessBuilder(Path.of(System.getProperty("java.home"), "bin", "java").toString(), "-cp",
+                dir.resolve("classes") + java.io.File.pathSeparator + System.getProperty("java.class.path"),
+                "raylab.cli.Main", "trace", scene.toString(), "--pixel", "10", "10").redirectErrorStream(true).start();
+        String text = new String(p.getInputStream().readAllBytes(), java.nio.charset.StandardCharsets.UTF_8);
+        assertEquals(0, p.waitFor(), text);
+        List<String> lines = text.lines().toList();
+        assertTrue(lines.contains("  surfaces asked in turn, as a group does (4): 1 broke a rule of intersect"), text);
+        String box = lines.stream().filter(l -> l.startsWith("    \"face in the ray's plane\": ")).findFirst().orElseThrow();
+        assertTrue(box.startsWith("    \"face in the ray's plane\": miss   "), box);
+        assertTrue(box.contains("the ray meets this box (it runs along a face, inside the closed box) but intersect"
+                + " missed it: a slab with d = 0 divides 0 by 0 (NaN)"), box);
+        assertTrue(!box.contains("the line of the ray does not meet it"), box);
+    }
 }

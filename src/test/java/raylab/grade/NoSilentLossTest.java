@@ -201,4 +201,31 @@ class NoSilentLossTest {
         // Where n·l and r·v coincide (v = n), the hint names neither alone.
         notShown("mistakes/phong-reflection-vector/BlinnPhong.java", "phong: v = n, l along the surface", nl);
     }
+
+    @Test
+    void theSkipHintOnlyForALightThatWasNotSkipped() {
+        String test = "lambert: a light in shadow adds nothing";
+        String hint = "skip a light when at.visible(light) is false";
+        shown("mistakes/lambert-shadow-ignored/Shading.java", test, hint);
+        notShown("bugs2/Shading.java", test, hint); // skips blocked lights; adds the ambient term per light
+        notShown("mistakes/lambert-shadow-gates-diffuse-only/Shading.java", test, hint);
+        shown("mistakes/lambert-shadow-gates-diffuse-only/Shading.java", test, "no highlight either");
+    }
+
+    @Test
+    void theNDotLHintIsNotShownForAHalvedHalfVector() {
+        String test = "phong: v off the normal";
+        shown("mistakes/phong-half-vector-halved/BlinnPhong.java", test, "halving v + l");
+        notShown("mistakes/phong-half-vector-halved/BlinnPhong.java", test, "not n·l");
+        notShown("mistakes/phong-n-dot-l/BlinnPhong.java", test, "halving v + l");
+    }
+
+    @Test
+    void theZeroComponentHintOnTheSixFacesOnlyWhenTheZeroComponentsAloneBreakIt() {
+        String test = "box: each of the 6 faces";
+        String hint = "0/0 = NaN";
+        notShown("bugs1/Box.java", test, hint); // never swaps t_min and t_max when d < 0
+        shown("bugs1/Box.java", test, "swap t_min and t_max");
+        assertTrue(visibleOutput("bugs3/Box.java").contains(hint), visibleOutput("bugs3/Box.java")); // no d = 0 case
+    }
 }

@@ -57,20 +57,24 @@ class BlinnPhongTest {
     @Test
     @DisplayName("v off the normal: the half vector's n·h, not n·l or the reflection vector's r·v")
     void halfVectorNotReflection() {
-        // n = (0,0,1), l = (0.6,0,0.8), v = (0,0.6,0.8): v + l = (0.6,0.6,1.6), n·h = 1.6/√3.28.
-        // Wrong forms give other values: n·l = 0.8; r = 2(n·l)n − l = (−0.6,0,0.8), r·v = 0.64.
+        // n = (0,0,1), l = (0.6,0,0.8), v = (0,0.28,0.96): v + l = (0.6,0.28,1.76), n·h = 1.76/√3.536.
+        // Wrong forms give other values, no two alike: n·l = 0.8; r = 2(n·l)n − l = (−0.6,0,0.8),
+        // r·v = 0.768; n·(v + l) = 1.76; n·(v + l)/2 = 0.88 (with v and l at the same height above
+        // the surface, (v + l)/2 would give n·l exactly: a hint could not tell them apart).
         Vec3 l = new Vec3(0.6, 0, 0.8);
-        Vec3 v = new Vec3(0, 0.6, 0.8);
+        Vec3 v = new Vec3(0, 0.28, 0.96);
         double p = 4;
-        double nh = 1.6 / Math.sqrt(3.28);
+        double nh = 1.76 / Math.sqrt(3.536);
         Color got = shiny(grey(1), p).specular(N, l, v, WHITE_LIGHT);
-        Check.colorLikely("specular with n·h = 1.6/√3.28, p = 4", grey(Math.pow(nh, p)), got,
+        Check.colorLikely("specular with n·h = 1.76/√3.536, p = 4", grey(Math.pow(nh, p)), got,
                 new Check.Likely(grey(Math.pow(0.8, p)), "that is max(0, n·l)^p: the highlight uses n·h with the half"
                         + " vector h = (v + l)/‖v + l‖, not n·l"),
-                new Check.Likely(grey(Math.pow(0.64, p)), "that is Phong's reflection-vector term max(0, r·v)^p with"
+                new Check.Likely(grey(Math.pow(0.768, p)), "that is Phong's reflection-vector term max(0, r·v)^p with"
                         + " r = 2(n·l)n − l; Blinn-Phong uses the half vector instead: max(0, n·h)^p, h = (v + l)/‖v + l‖"),
-                new Check.Likely(grey(Math.pow(1.6, p)), "n·(v + l) without dividing by ‖v + l‖: h must be a unit"
-                        + " vector"));
+                new Check.Likely(grey(Math.pow(1.76, p)), "n·(v + l) without dividing by ‖v + l‖: h must be a unit"
+                        + " vector"),
+                new Check.Likely(grey(Math.pow(0.88, p)), "n·(v + l)/2: halving v + l does not make it a unit vector"
+                        + " (only when v and l are the same vector); divide by its length ‖v + l‖"));
     }
 
     @ParameterizedTest(name = "p = {0}: n·h^p = {1}")

@@ -174,10 +174,7 @@ public final class Check {
                     : returned ? "returned true but did not write the record"
                     : "wrote the record but returned false";
             String auto = neither ? (s instanceof Triangle tri ? edgeHint(tri, point)
-                    : s instanceof Box && hint == null && zeroAxes(ray) != null
-                            ? zeroAxes(ray) + " here: the ray never crosses those planes. It is inside such a slab for"
-                                    + " every t when min ≤ p ≤ max (the box is closed), outside for every t otherwise:"
-                                    + " decide that without dividing (when p is on a plane, (min − p)/0 = 0/0 = NaN)"
+                    : s instanceof Box && hint == null && zeroAxes(ray) != null ? boxHint(s, ray)
                             : insideHint(s, ray))
                     : "return true exactly when you write the record";
             fail(message(why, s, ray, expected, rec, returned, auto,
@@ -216,6 +213,27 @@ public final class Check {
                     hint == null ? null : hint.shownFor(new Failure(problem, ray, normal, rec.normal))));
         }
         return rec;
+    }
+
+    /**
+     * The hint for a box that misses a ray with a zero direction component, on evidence: the d = 0
+     * hint only when the same box hits the ray tilted off those planes (so the zero components
+     * alone break it); when it misses that too and d has a negative component, the swap of the
+     * slab's entry and exit; otherwise none.
+     */
+    static String boxHint(Surface s, Ray ray) {
+        double tilt = 1e-3 * ray.d.length();
+        Ray tilted = new Ray(ray.p, new Vec3(ray.d.x == 0 ? tilt : ray.d.x, ray.d.y == 0 ? tilt : ray.d.y,
+                ray.d.z == 0 ? tilt : ray.d.z), ray.tMin, ray.tMax);
+        if (intersect(s, new IntersectionRecord(), tilted)) {
+            return zeroAxes(ray) + " here: the ray never crosses those planes. It is inside such a slab for"
+                    + " every t when min ≤ p ≤ max (the box is closed), outside for every t otherwise:"
+                    + " decide that without dividing (when p is on a plane, (min − p)/0 = 0/0 = NaN)";
+        }
+        String negative = ray.d.x < 0 ? "d_x" : ray.d.y < 0 ? "d_y" : ray.d.z < 0 ? "d_z" : null;
+        return negative == null ? insideHint(s, ray) : negative + " < 0 here, and the box is missed even with the"
+                + " ray tilted off the planes of its zero components: when d is negative, a slab is entered at its"
+                + " max plane and left at its min plane: swap t_min and t_max when t_min > t_max";
     }
 
     /** "d_x = 0" (or "d_x = d_y = 0") for the zero components of d, or null when there are none. */
