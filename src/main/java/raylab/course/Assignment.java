@@ -59,7 +59,7 @@ public record Assignment(
      *
      * @param tag              JUnit tag of the visible and hidden tests
      * @param visible          visible test files (shipped to students)
-     * @param hidden           hidden test files, under grader/ (never shipped)
+     * @param hidden           hidden test files (the instructor's; never shipped)
      * @param visiblePoints    points shared by the visible tests
      * @param hiddenPoints     points shared by the hidden tests
      * @param hiddenVisibility Gradescope visibility of hidden tests: hidden, after_due_date, ...

@@ -375,14 +375,21 @@ public final class MilestoneCheck {
         }
     }
 
-    /** The data-case checker: shipped in the starter, the grader's copy in the instructor's tree. */
+    /**
+     * The data-case checker: shipped in the starter under src/test/java; in the instructor's tree,
+     * the copy in a top-level folder's {@code tests} (beside the other tests that are not shipped).
+     */
     static Path caseChecker(Path root) {
-        for (String p : List.of("src/test/java/raylab/cases/CaseCheck.java", "grader/tests/raylab/cases/CaseCheck.java")) {
-            if (Files.isRegularFile(root.resolve(p))) {
-                return root.resolve(p);
-            }
+        String checker = "raylab/cases/CaseCheck.java";
+        if (Files.isRegularFile(root.resolve("src/test/java").resolve(checker))) {
+            return root.resolve("src/test/java").resolve(checker);
         }
-        return null;
+        try (java.util.stream.Stream<Path> top = Files.list(root)) {
+            return top.map(d -> d.resolve("tests").resolve(checker)).filter(Files::isRegularFile).sorted()
+                    .findFirst().orElse(null);
+        } catch (IOException e) {
+            return null;
+        }
     }
 
     /** Renders a scene with {@code raylab render --compare} in a child JVM (so a stuck render can be stopped). */

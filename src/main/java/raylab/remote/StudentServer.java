@@ -143,7 +143,7 @@ public final class StudentServer {
 
     /**
      * Test mode: every byte the grader sends this process is also written to the file this
-     * system property names (the differential test compares them, grader/README.md "What crosses
+     * system property names (the differential test compares them; the autograder's documentation, "What crosses
      * the boundary"). Set only on the command line the test starts; never in a grading.
      */
     public static final String RECORD = "raylab.remote.record";

@@ -16,7 +16,7 @@ import raylab.surface.Surface;
  * path ({@code src/main/resources/} in the instructor's tree). The built-in types (sphere, box,
  * triangle, mesh) keep their names; an extension may not take one.
  *
- * <p>The surface class itself follows the process boundary's rule (grader/README.md,
+ * <p>The surface class itself follows the process boundary's rule (the autograder's documentation,
  * "Protocol"): a public constructor, and a public field or accessor named like each of its
  * parameters, from which the grader rebuilds the student's object.
  */

@@ -156,8 +156,7 @@ public final class ReleaseVerifier {
 
     /**
      * Lines of the starter's files that name a hidden test class, or the grader's folder
-     * ({@code grader/}) outside the shared framework's Java sources (which name it generically to
-     * find hidden tests in the instructor's tree): "FILE:LINE names ...".
+     * ({@code grader/}): "FILE:LINE names ...".
      */
     static List<String> namesHidden(Path starter, List<String> files, Set<String> hiddenClasses) throws IOException {
         List<String> named = new ArrayList<>();
@@ -170,7 +169,7 @@ public final class ReleaseVerifier {
                         named.add(rel + ":" + (i + 1) + " names the hidden test " + h);
                     }
                 }
-                if (lines[i].contains("grader/") && !(rel.startsWith("src/main/java/") && rel.endsWith(".java"))) {
+                if (lines[i].contains("grader/")) {
                     named.add(rel + ":" + (i + 1) + " names the grader's folder (" + abbreviate(lines[i].trim(), 40) + ")");
                 }
             }

@@ -64,6 +64,7 @@ class StarterNamesNothingHiddenTest {
         List<String> found = ReleaseVerifier.namesHidden(dir.resolve("planted"),
                 List.of("docs/notes.md", "pom.xml", "src/main/java/raylab/A.java"), Set.of("SphereHiddenTest"));
         assertEquals(List.of("docs/notes.md:2 names the hidden test SphereHiddenTest",
-                "pom.xml:1 names the grader's folder (<source>grader/tests</source>)"), found);
+                "pom.xml:1 names the grader's folder (<source>grader/tests</source>)",
+                "src/main/java/raylab/A.java:1 names the grader's folder (// finds grader/tests in the instruct...)"), found);
     }
 }
