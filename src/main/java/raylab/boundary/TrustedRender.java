@@ -288,15 +288,38 @@ public final class TrustedRender {
                         StandardCharsets.UTF_8);
             }
         }
+        if (!later.isEmpty()) {
+            // The feedback chooses its pixels by comparing with the reference image: it runs after
+            // every graded image is final, with a student process of its own, so that nothing it
+            // sends reaches the process whose answers were graded (grader/README.md, "What crosses
+            // the boundary").
+            String config = System.getProperty("raylab.boundary");
+            if (config == null) {
+                later.clear();
+            } else {
+                try {
+                    Remote.switchTo(Path.of(config));
+                    cpuAtStart = Remote.process().studentCpuNanos();
+                    budget = Math.min(budget, FEEDBACK_NANOS);
+                    Remote.process().beforeEachFrame(TrustedRender::checkTime);
+                } catch (RuntimeException e) {
+                    later.clear(); // no process for the feedback: no feedback, the grades stand
+                }
+            }
+        }
         for (Runnable r : later) {
             r.run();
         }
     }
 
+    /** The most student CPU time the graded feedback's traces may take, for all scenes. */
+    private static final long FEEDBACK_NANOS = 10_000_000_000L;
+
     /**
      * The graded feedback of a scene that differs (issue 40): its worst pixels traced both ways, the
      * reference's tree by the milestone's reference alone ({@link Speculation#beginReference}: nothing noted or sent),
-     * the student's through the process boundary one call at a time, written as
+     * the student's through the process boundary one call at a time (in the feedback's own student
+     * process, {@link #renderAll}), written as
      * {@link raylab.inspect.WorstPixels} JSON. Nothing is written when the images agree, when the
      * renders' time is up, or when anything goes wrong: the feedback never costs a grade.
      */
@@ -310,7 +333,6 @@ public final class TrustedRender {
         } catch (RuntimeException | StackOverflowError e) {
             return;
         }
-        Remote.speculate(spec);
         try {
             spec.clear();
             var result = raylab.inspect.WorstPixels.find(image, reference, (x, y) -> {
@@ -318,6 +340,7 @@ public final class TrustedRender {
                     return null;
                 }
                 raylab.inspect.RayTree ref;
+                Remote.speculate(spec);
                 spec.beginReference();
                 try {
                     ref = tracer.trace(x, y);
@@ -325,7 +348,9 @@ public final class TrustedRender {
                     return null;
                 } finally {
                     spec.end();
+                    Remote.speculate(null);
                 }
+                // The student's tree through this JVM's student process, one call at a time.
                 try {
                     return new raylab.inspect.RayTree[] {tracer.trace(x, y), ref};
                 } catch (RuntimeException | StackOverflowError e) {

@@ -113,7 +113,12 @@ public final class StudentServer {
         InputStream stdin = new FileInputStream(channel ? descriptor(CHANNEL_IN) : FileDescriptor.in);
         String record = System.getProperty(RECORD);
         if (record != null && !record.isEmpty()) {
-            stdin = new Recording(stdin, new FileOutputStream(record));
+            // One file per process: the first is FILE, a later one FILE.2, FILE.3, ...
+            java.io.File file = new java.io.File(record);
+            for (int n = 2; !file.createNewFile(); n++) {
+                file = new java.io.File(record + "." + n);
+            }
+            stdin = new Recording(stdin, new FileOutputStream(file));
         }
         StudentServer s = new StudentServer(stdin, proto, students);
         System.setIn(InputStream.nullInputStream());
@@ -143,8 +148,9 @@ public final class StudentServer {
 
     /**
      * Test mode: every byte the grader sends this process is also written to the file this
-     * system property names (the differential test compares them; the autograder's documentation, "What crosses
-     * the boundary"). Set only on the command line the test starts; never in a grading.
+     * system property names, or FILE.2, FILE.3, ... by a process started after the first (the
+     * differential test compares them; the autograder's documentation, "What crosses the
+     * boundary"). Set only on the command line the test starts; never in a grading.
      */
     public static final String RECORD = "raylab.remote.record";
 
