@@ -316,6 +316,66 @@ public final class Check {
                     "no hit (return false, record untouched: " + before + ")", rec, returned,
                     auto, hint));
         }
+        controlHit(s);
+    }
+
+    /**
+     * The control that a miss is scored with: a ray from outside, at an oblique angle (no zero
+     * component of d), through the centre of {@code s} (a sphere's centre, a box's centre, a
+     * triangle's centroid) must hit it, with a t in the ray's range written to a fresh record.
+     * Code that always misses passes every miss on its own; with the control it earns nothing
+     * for them. The exact t is the hit tests' business: here any hit from the front counts.
+     * Surfaces of other kinds have no control.
+     */
+    public static void controlHit(Surface s) {
+        Ray control = controlRay(s);
+        if (control == null) {
+            return;
+        }
+        IntersectionRecord rec = new IntersectionRecord();
+        double before = rec.t;
+        boolean returned = intersect(s, rec, control);
+        if (!returned || rec.t == before || !control.inRange(rec.t)) {
+            fail(message("no hit on the control ray", s, control,
+                    "a hit: this ray passes through the centre of the surface from outside (a test of a miss counts"
+                            + " only when the same code hits the surface where it must)", rec, returned,
+                    returned ? "return true exactly when you write the record" : null));
+        }
+    }
+
+    /** The control ray of {@link #controlHit}: through the centre, from outside, d with no zero component. */
+    public static Ray controlRay(Surface s) {
+        Vec3 centre;
+        Vec3 out;
+        double size;
+        if (s instanceof Sphere sp) {
+            centre = sp.center;
+            out = new Vec3(0.36, 0.48, 0.8);
+            size = Math.abs(sp.radius);
+        } else if (s instanceof Box b) {
+            if (!(b.min.x < b.max.x && b.min.y < b.max.y && b.min.z < b.max.z)) {
+                return null; // flat or empty: no centre to aim at
+            }
+            centre = b.min.plus(b.max).times(0.5);
+            out = new Vec3(0.36, 0.48, 0.8);
+            size = b.max.minus(b.min).length();
+        } else if (s instanceof Triangle tr) {
+            Vec3 n = tr.b.minus(tr.a).cross(tr.c.minus(tr.a));
+            if (!(n.length() > 0)) {
+                return null; // degenerate: nothing to hit
+            }
+            centre = tr.a.plus(tr.b).plus(tr.c).times(1.0 / 3);
+            // Mostly along the normal, tilted so that no component of d is zero.
+            out = n.normalize().plus(new Vec3(0.03, 0.05, 0.07));
+            size = Math.max(tr.b.minus(tr.a).length(), tr.c.minus(tr.a).length());
+        } else {
+            return null;
+        }
+        if (!(size > 0) || !Double.isFinite(size)) {
+            return null;
+        }
+        Vec3 p = centre.plus(out.times(3 * size));
+        return new Ray(p, centre.minus(p));
     }
 
     /**
@@ -395,6 +455,44 @@ public final class Check {
             fail(shadowMessage("shadowed", x, n, light, "lit (nothing blocks the light)", true,
                     scratch, hint));
         }
+        shadowControl(scene, x, n, light);
+    }
+
+    /**
+     * The control that "lit" is scored with: the same scene, point and light with a ball added
+     * halfway between x and the light (radius a quarter of their distance, so it touches neither)
+     * must shadow x. Code that always answers "lit" passes every lit case on its own; with the
+     * control it earns nothing for them. Nothing is asked of a light that casts no shadows.
+     */
+    public static void shadowControl(Surface scene, Vec3 x, Vec3 n, PointLight light) {
+        double distance = light.position.minus(x).length();
+        if (!light.castsShadows || !(distance > 0) || !Double.isFinite(distance)) {
+            return;
+        }
+        Sphere ball = new Sphere(x.plus(light.position).times(0.5), distance / 4,
+                new Lambertian(Color.WHITE, Color.BLACK, "control material"), "control ball");
+        Surface withBall = new raylab.surface.Group(java.util.List.of(scene, ball), "scene and control ball");
+        IntersectionRecord scratch = new IntersectionRecord();
+        if (!raylab.shading.Shadows.isShadowed(withBall, x, n, light, scratch)) {
+            fail(shadowMessage("not shadowed by the control ball", x, n, light, "shadowed by the control ball "
+                    + describe(ball) + ", added halfway between x and the light (a test of a lit point counts only"
+                    + " when the same code finds a blocker where there is one)", false, scratch, null));
+        }
+    }
+
+    /**
+     * The control that "shadowed" is scored with: the same point and light in an empty scene must
+     * be lit. Code that always answers "shadowed" passes every shadowed case on its own; with the
+     * control it earns nothing for them.
+     */
+    public static void litControl(Vec3 x, Vec3 n, PointLight light) {
+        Surface empty = new raylab.surface.Group(java.util.List.of(), "empty scene");
+        IntersectionRecord scratch = new IntersectionRecord();
+        if (raylab.shading.Shadows.isShadowed(empty, x, n, light, scratch)) {
+            fail(shadowMessage("shadowed in an empty scene", x, n, light, "lit: the control scene is empty, nothing can"
+                    + " block the light (a test of a shadow counts only when the same code finds the light where"
+                    + " nothing blocks it)", true, scratch, null));
+        }
     }
 
     private static String shadowMessage(String problem, Vec3 x, Vec3 n, PointLight light,
@@ -444,6 +542,37 @@ public final class Check {
             fail(what + "\n  expected: " + expected + "\n  got:      " + actual
                     + (hint == null ? "" : "\nHINT: " + hint) + "\n");
         }
+    }
+
+    /**
+     * The control that a black diffuse answer is scored with: kd = (0.5, 0.25, 1) lit straight
+     * from above (n = l, so n·l = 1) gives L_d = kd·I, for I = 1 and again for I = 2. A constant
+     * colour cannot pass both; black fails both.
+     */
+    public static void diffuseControl() {
+        Lambertian m = new Lambertian(new Color(0.5, 0.25, 1), Color.BLACK, "control matte");
+        Vec3 n = new Vec3(0, 0, 1);
+        color("control: diffuse with n = l = (0,0,1), kd = (0.5,0.25,1), I = (1,1,1) (a case of black counts only when"
+                + " the same code lights a surface facing the light)", new Color(0.5, 0.25, 1),
+                m.diffuse(n, n, new Color(1, 1, 1)), null);
+        color("control: diffuse with n = l = (0,0,1), kd = (0.5,0.25,1), I = (2,2,2)", new Color(1, 0.5, 2),
+                m.diffuse(n, n, new Color(2, 2, 2)), null);
+    }
+
+    /**
+     * The control that a black (or constant) highlight is scored with: ks = (0.5, 0.25, 1) seen and
+     * lit along n (h = n, n·h = 1, so (n·h)^p = 1 for any p) gives L_s = ks·I, for I = 1 and again
+     * for I = 2. A constant colour cannot pass both; black fails both.
+     */
+    public static void specularControl() {
+        raylab.material.BlinnPhong m = new raylab.material.BlinnPhong(Color.BLACK, new Color(0.5, 0.25, 1), 10,
+                Color.BLACK, "control shiny");
+        Vec3 n = new Vec3(0, 0, 1);
+        color("control: specular with n = l = v = (0,0,1), ks = (0.5,0.25,1), p = 10, I = (1,1,1) (a case of black or"
+                + " of two equal highlights counts only when the same code shows the mirror highlight)",
+                new Color(0.5, 0.25, 1), m.specular(n, n, n, new Color(1, 1, 1)), null);
+        color("control: specular with n = l = v = (0,0,1), ks = (0.5,0.25,1), p = 10, I = (2,2,2)",
+                new Color(1, 0.5, 2), m.specular(n, n, n, new Color(2, 2, 2)), null);
     }
 
     private static boolean close(double expected, double actual) {
