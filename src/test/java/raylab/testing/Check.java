@@ -320,62 +320,82 @@ public final class Check {
     }
 
     /**
-     * The control that a miss is scored with: a ray from outside, at an oblique angle (no zero
-     * component of d), through the centre of {@code s} (a sphere's centre, a box's centre, a
-     * triangle's centroid) must hit it, with a t in the ray's range written to a fresh record.
-     * Code that always misses passes every miss on its own; with the control it earns nothing
-     * for them. The exact t is the hit tests' business: here any hit from the front counts.
-     * Surfaces of other kinds have no control.
+     * The control that a miss is scored with: the same code must hit the surface where a ray
+     * from outside, at an oblique angle with every component of d positive, passes through its
+     * centre (a sphere's centre, a box's centre, a triangle's centroid), with a t in the ray's
+     * range written to a fresh record. For a triangle a hit just outside the midpoint of one of
+     * its edges counts too (code with one edge test the wrong way round hits there and not at the
+     * centroid: it computes something, it is not a constant). Code that always misses passes
+     * every miss on its own; with the control it earns nothing for them. The exact t is the hit
+     * tests' business: here any hit counts. Surfaces of other kinds have no control.
      */
     public static void controlHit(Surface s) {
-        Ray control = controlRay(s);
-        if (control == null) {
+        java.util.List<Ray> controls = controlRays(s);
+        if (controls.isEmpty()) {
             return;
         }
-        IntersectionRecord rec = new IntersectionRecord();
-        double before = rec.t;
-        boolean returned = intersect(s, rec, control);
-        if (!returned || rec.t == before || !control.inRange(rec.t)) {
-            fail(message("no hit on the control ray", s, control,
-                    "a hit: this ray passes through the centre of the surface from outside (a test of a miss counts"
-                            + " only when the same code hits the surface where it must)", rec, returned,
-                    returned ? "return true exactly when you write the record" : null));
+        IntersectionRecord first = null;
+        boolean firstReturned = false;
+        for (Ray control : controls) {
+            IntersectionRecord rec = new IntersectionRecord();
+            double before = rec.t;
+            boolean returned = intersect(s, rec, control);
+            if (returned && rec.t != before && control.inRange(rec.t)) {
+                return;
+            }
+            if (first == null) {
+                first = rec;
+                firstReturned = returned;
+            }
         }
+        fail(message("no hit on the control ray", s, controls.get(0),
+                "a hit: this ray passes through the centre of the surface from outside (a test of a miss counts"
+                        + " only when the same code hits the surface where it must)", first, firstReturned,
+                firstReturned ? "return true exactly when you write the record" : null));
     }
 
-    /** The control ray of {@link #controlHit}: through the centre, from outside, d with no zero component. */
-    public static Ray controlRay(Surface s) {
-        Vec3 centre;
-        Vec3 out;
-        double size;
+    /**
+     * The control rays of {@link #controlHit}: the first through the centre, from outside, with
+     * every component of d positive (no zero component, no negative one); for a triangle then one
+     * just outside the midpoint of each edge. Empty for a degenerate or unknown surface.
+     */
+    public static java.util.List<Ray> controlRays(Surface s) {
+        Vec3 out = new Vec3(0.36, 0.48, 0.8);
         if (s instanceof Sphere sp) {
-            centre = sp.center;
-            out = new Vec3(0.36, 0.48, 0.8);
-            size = Math.abs(sp.radius);
+            double size = Math.abs(sp.radius);
+            return size > 0 && Double.isFinite(size) ? java.util.List.of(toward(sp.center, out, size))
+                    : java.util.List.of();
         } else if (s instanceof Box b) {
             if (!(b.min.x < b.max.x && b.min.y < b.max.y && b.min.z < b.max.z)) {
-                return null; // flat or empty: no centre to aim at
+                return java.util.List.of(); // flat or empty: no centre to aim at
             }
-            centre = b.min.plus(b.max).times(0.5);
-            out = new Vec3(0.36, 0.48, 0.8);
-            size = b.max.minus(b.min).length();
+            double size = b.max.minus(b.min).length();
+            return Double.isFinite(size) ? java.util.List.of(toward(b.min.plus(b.max).times(0.5), out, size))
+                    : java.util.List.of();
         } else if (s instanceof Triangle tr) {
             Vec3 n = tr.b.minus(tr.a).cross(tr.c.minus(tr.a));
-            if (!(n.length() > 0)) {
-                return null; // degenerate: nothing to hit
+            double size = Math.max(tr.b.minus(tr.a).length(), tr.c.minus(tr.a).length());
+            if (!(n.length() > 0) || !Double.isFinite(size)) {
+                return java.util.List.of(); // degenerate: nothing to hit
             }
-            centre = tr.a.plus(tr.b).plus(tr.c).times(1.0 / 3);
-            // Mostly along the normal, tilted so that no component of d is zero.
-            out = n.normalize().plus(new Vec3(0.03, 0.05, 0.07));
-            size = Math.max(tr.b.minus(tr.a).length(), tr.c.minus(tr.a).length());
-        } else {
-            return null;
+            // Mostly along the normal (whichever side has n·d < 0), tilted so that no component of d is zero.
+            Vec3 along = n.normalize().plus(new Vec3(0.03, 0.05, 0.07));
+            Vec3 g = tr.a.plus(tr.b).plus(tr.c).times(1.0 / 3);
+            java.util.List<Ray> rays = new java.util.ArrayList<>();
+            rays.add(toward(g, along.negate(), size));
+            for (Vec3[] edge : new Vec3[][] {{tr.a, tr.b}, {tr.b, tr.c}, {tr.c, tr.a}}) {
+                Vec3 m = edge[0].plus(edge[1]).times(0.5);
+                rays.add(toward(m.plus(m.minus(g).times(0.25)), along.negate(), size));
+            }
+            return rays;
         }
-        if (!(size > 0) || !Double.isFinite(size)) {
-            return null;
-        }
-        Vec3 p = centre.plus(out.times(3 * size));
-        return new Ray(p, centre.minus(p));
+        return java.util.List.of();
+    }
+
+    /** A ray that travels along d (scaled to 3·size) and reaches x at t = 1. */
+    private static Ray toward(Vec3 x, Vec3 d, double size) {
+        Vec3 step = d.times(3 * size / d.length());
+        return new Ray(x.minus(step), step);
     }
 
     /**
@@ -561,18 +581,24 @@ public final class Check {
 
     /**
      * The control that a black (or constant) highlight is scored with: ks = (0.5, 0.25, 1) seen and
-     * lit along n (h = n, n·h = 1, so (n·h)^p = 1 for any p) gives L_s = ks·I, for I = 1 and again
-     * for I = 2. A constant colour cannot pass both; black fails both.
+     * lit along n (h = n, the full highlight) must give a highlight that is not black, and twice
+     * the light, I = 2 instead of 1, must give twice it (L_s = ks·I·max(0, n·h)^p is linear in
+     * I). A constant colour fails: black is black, any other constant does not double. What the
+     * highlight is exactly is the other tests' business.
      */
     public static void specularControl() {
         raylab.material.BlinnPhong m = new raylab.material.BlinnPhong(Color.BLACK, new Color(0.5, 0.25, 1), 10,
                 Color.BLACK, "control shiny");
         Vec3 n = new Vec3(0, 0, 1);
-        color("control: specular with n = l = v = (0,0,1), ks = (0.5,0.25,1), p = 10, I = (1,1,1) (a case of black or"
-                + " of two equal highlights counts only when the same code shows the mirror highlight)",
-                new Color(0.5, 0.25, 1), m.specular(n, n, n, new Color(1, 1, 1)), null);
-        color("control: specular with n = l = v = (0,0,1), ks = (0.5,0.25,1), p = 10, I = (2,2,2)",
-                new Color(1, 0.5, 2), m.specular(n, n, n, new Color(2, 2, 2)), null);
+        Color once = m.specular(n, n, n, new Color(1, 1, 1));
+        Color twice = m.specular(n, n, n, new Color(2, 2, 2));
+        String what = "control: specular with n = l = v = (0,0,1), ks = (0.5,0.25,1), p = 10 (a case of black or of two"
+                + " equal highlights counts only when the same code shows a highlight that grows with the light)";
+        if (once == null || !(once.r > 0 || once.g > 0 || once.b > 0)) {
+            fail(what + "\n  expected: a highlight (not black) for I = (1,1,1)\n  got:      " + once + "\n");
+        }
+        color(what + ", I = (2,2,2) against I = (1,1,1)", new Color(2 * once.r, 2 * once.g, 2 * once.b), twice,
+                "L_s = ks·I·max(0, n·h)^p: twice the light gives twice the highlight");
     }
 
     private static boolean close(double expected, double actual) {
