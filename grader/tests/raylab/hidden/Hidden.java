@@ -144,6 +144,8 @@ public final class Hidden {
         if (changed != null) {
             fail("expected the record untouched on a miss, but its " + changed + " changed: " + rec + ctx);
         }
+        // A miss is scored with a control hit through the surface's centre: a constant miss earns nothing.
+        raylab.testing.Check.controlHit(s);
     }
 
     public static IntersectionRecord copy(IntersectionRecord r) {

@@ -75,6 +75,7 @@ class LambertianHiddenTest {
             assertColor("#" + i + " (seed " + seed + ") n " + n + ", l " + l + ", n·l = " + n.dot(l), Color.BLACK,
                     m.diffuse(n, l, new Color(1, 1, 1)), "clamp: max(0, n·l) is 0 when the light is behind the surface");
         }
+        raylab.testing.Check.diffuseControl();
     }
 
     @Test
@@ -85,6 +86,8 @@ class LambertianHiddenTest {
         Vec3 l = new Vec3(0, 1, 0);
         assertColor("light perpendicular to n (n·l = 0), ka (0.9, 0.1, 0.3)", Color.BLACK,
                 m.diffuse(n, l, new Color(1, 1, 1)), "diffuse is only kd ∘ I · max(0, n·l): the renderer adds ka ∘ Ia itself");
+        assertColor("light along n (n·l = 1), kd (0.5, 0.5, 0.5), ka (0.9, 0.1, 0.3)", new Color(0.5, 0.5, 0.5),
+                m.diffuse(n, n, new Color(1, 1, 1)), "diffuse is only kd ∘ I · max(0, n·l): the renderer adds ka ∘ Ia itself");
     }
 
     @Test

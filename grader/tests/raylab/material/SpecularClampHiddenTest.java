@@ -51,5 +51,6 @@ class SpecularClampHiddenTest {
                     "clamp before the power: max(0, n·h)^p; (n·h)^p is positive for an even p and NaN for a"
                             + " fractional p when n·h < 0");
         }
+        raylab.testing.Check.specularControl();
     }
 }

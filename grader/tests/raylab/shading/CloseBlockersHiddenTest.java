@@ -33,6 +33,16 @@ import raylab.surface.Triangle;
  */
 @Tag("shadows")
 class CloseBlockersHiddenTest {
+    /**
+     * Asserts that the light is blocked at x, scored with the control that the same point and
+     * light in an empty scene are lit ({@link raylab.testing.Check#litControl}).
+     */
+    private static void assertShadowed(Surface scene, Vec3 x, Vec3 n, PointLight l, IntersectionRecord scratch,
+            String message) {
+        assertTrue(Shadows.isShadowed(scene, x, n, l, scratch), message);
+        raylab.testing.Check.litControl(x, n, l);
+    }
+
     private static final String HINT = "only blockers strictly between x and the light count, but all of them: keep"
             + " the offset (or tMin) tiny, such as 1e-6, or scale it with the coordinates; 0.01 skips nearby blockers";
 
@@ -85,7 +95,7 @@ class CloseBlockersHiddenTest {
             Triangle blocker = across(x, l, s, 0.5 * s * n.dot(l));
             Group scene = new Group(List.of(ground, blocker), "scene");
             PointLight light = new PointLight(x.plus(l.times(dist)), Color.WHITE, true, "light");
-            assertTrue(Shadows.isShadowed(scene, x, n, light, new IntersectionRecord()),
+            assertShadowed(scene, x, n, light, new IntersectionRecord(),
                     "expected shadowed: " + ctx(i, seed, x, n, light.position, s, "from x"));
         }
     }
@@ -106,7 +116,7 @@ class CloseBlockersHiddenTest {
             Triangle blocker = across(x, l, dist - s, 0.2);
             Group scene = new Group(List.of(ground, blocker), "scene");
             PointLight light = new PointLight(x.plus(l.times(dist)), Color.WHITE, true, "light");
-            assertTrue(Shadows.isShadowed(scene, x, n, light, new IntersectionRecord()),
+            assertShadowed(scene, x, n, light, new IntersectionRecord(),
                     "expected shadowed: " + ctx(i, seed, x, n, light.position, s, "before the light"));
         }
     }

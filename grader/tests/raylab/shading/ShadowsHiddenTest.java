@@ -31,8 +31,28 @@ import raylab.surface.Triangle;
  */
 @Tag("shadows")
 class ShadowsHiddenTest {
+    /**
+     * Asserts that the light is blocked at x, scored with the control that the same point and
+     * light in an empty scene are lit ({@link raylab.testing.Check#litControl}).
+     */
+    private static void assertShadowed(Surface scene, Vec3 x, Vec3 n, PointLight l, IntersectionRecord scratch,
+            String message) {
+        assertTrue(Shadows.isShadowed(scene, x, n, l, scratch), message);
+        raylab.testing.Check.litControl(x, n, l);
+    }
+
     private static PointLight light(Vec3 at) {
         return new PointLight(at, Color.WHITE, true, "light at " + at);
+    }
+
+    /**
+     * Asserts that nothing blocks the light at x, scored with the control that a ball added
+     * halfway to the light does ({@link raylab.testing.Check#shadowControl}).
+     */
+    private static void assertLit(Surface scene, Vec3 x, Vec3 n, PointLight l, IntersectionRecord scratch,
+            String message) {
+        assertFalse(Shadows.isShadowed(scene, x, n, l, scratch), message);
+        raylab.testing.Check.shadowControl(scene, x, n, l);
     }
 
     private static String ctx(Surface scene, Vec3 x, Vec3 n, PointLight l) {
@@ -56,7 +76,7 @@ class ShadowsHiddenTest {
             Sphere blocker = new Sphere(mid, rb, M, "blocker");
             Group scene = new Group(List.of(ground, blocker), "scene");
             PointLight l = light(lp);
-            assertTrue(Shadows.isShadowed(scene, x, u, l, new IntersectionRecord()),
+            assertShadowed(scene, x, u, l, new IntersectionRecord(),
                     "expected shadowed: a sphere sits between x and the light #" + i + " (seed " + seed + ")"
                             + ctx(scene, x, u, l) + "\n  hint: shadow ray r(t) = x + t (light − x), blockers with t in (0, 1)");
         }
@@ -73,7 +93,7 @@ class ShadowsHiddenTest {
             Vec3 x = ball.center.plus(u.times(ball.radius));
             Vec3 lp = x.plus(within(r, u, 0.2).times(uniform(r, 1, 40)));
             PointLight l = light(lp);
-            assertFalse(Shadows.isShadowed(ball, x, u, l, new IntersectionRecord()),
+            assertLit(ball, x, u, l, new IntersectionRecord(),
                     "expected lit: nothing but the sphere x lies on, and the light is on its outer side #" + i
                             + " (seed " + seed + ")" + ctx(ball, x, u, l)
                             + "\n  hint: shadow acne: start the shadow ray a little off the surface or raise its tMin");
@@ -92,14 +112,14 @@ class ShadowsHiddenTest {
             Vec3 n = new Vec3(0, 1, 0);
             Vec3 lp = new Vec3(uniform(r, -20, 20), uniform(r, 0.5, 2.5), uniform(r, -20, 20));
             PointLight l = light(lp);
-            assertFalse(Shadows.isShadowed(floor, x, n, l, new IntersectionRecord()),
+            assertLit(floor, x, n, l, new IntersectionRecord(),
                     "expected lit: x is on the top face of the box, the light above it #" + i + " (seed " + seed + ")"
                             + ctx(floor, x, n, l) + "\n  hint: a ray starting exactly on a face hits it at t = 0");
             Vec3 xt = new Vec3(uniform(r, -1, 1), 3, uniform(r, -2, 1));
             Vec3 nt = new Vec3(0, 1, 0).times(tri.b.minus(tri.a).cross(tri.c.minus(tri.a)).y > 0 ? 1 : -1);
             Vec3 lt = xt.plus(nt.times(uniform(r, 1, 10))).plus(new Vec3(uniform(r, -3, 3), 0, uniform(r, -3, 3)));
             PointLight l2 = light(lt);
-            assertFalse(Shadows.isShadowed(tri, xt, nt, l2, new IntersectionRecord()),
+            assertLit(tri, xt, nt, l2, new IntersectionRecord(),
                     "expected lit: x is on the triangle, the light on its side #" + i + " (seed " + seed + ")"
                             + ctx(tri, xt, nt, l2) + "\n  hint: shadow acne on a plane: offset the origin or raise tMin");
         }
@@ -114,7 +134,7 @@ class ShadowsHiddenTest {
         Vec3 x = new Vec3(0, 0, 0);
         Vec3 n = new Vec3(0, 1, 0);
         PointLight l = light(new Vec3(0, 5, 0));
-        assertFalse(Shadows.isShadowed(scene, x, n, l, new IntersectionRecord()),
+        assertLit(scene, x, n, l, new IntersectionRecord(),
                 "expected lit: the sphere at y = 8..12 is past the light at y = 5 (t = 1.6 on the shadow ray)"
                         + ctx(scene, x, n, l) + "\n  hint: only blockers with t < 1 are between x and the light (tMax = 1)");
     }
@@ -128,7 +148,7 @@ class ShadowsHiddenTest {
         Vec3 x = new Vec3(0, 0, 0);
         Vec3 n = new Vec3(0, 1, 0);
         PointLight l = light(new Vec3(0, 10, 0));
-        assertTrue(Shadows.isShadowed(scene, x, n, l, new IntersectionRecord()),
+        assertShadowed(scene, x, n, l, new IntersectionRecord(),
                 "expected shadowed: a sphere spans y = 8.5..9.5, below the light at y = 10 (t = 0.85..0.95)"
                         + ctx(scene, x, n, l) + "\n  hint: the shadow ray's range is 0 < t < 1 for d = light − x, not (0, 0.5] or a unit length");
     }
@@ -141,7 +161,7 @@ class ShadowsHiddenTest {
         Vec3 x = new Vec3(0, 0, 0);
         Vec3 n = new Vec3(0, 1, 0);
         PointLight l = light(new Vec3(0, 80, 0));
-        assertTrue(Shadows.isShadowed(blocker, x, n, l, new IntersectionRecord()),
+        assertShadowed(blocker, x, n, l, new IntersectionRecord(),
                 "expected shadowed: blocker at distance 37..43, light at distance 80" + ctx(blocker, x, n, l)
                         + "\n  hint: with d = light − x, t = 1 is the light; with a unit d, tMax is the distance");
     }
@@ -153,7 +173,7 @@ class ShadowsHiddenTest {
         Vec3 x = new Vec3(0, 0, 0);
         Vec3 n = new Vec3(0, 1, 0);
         PointLight l = light(new Vec3(1, 6, 0));
-        assertFalse(Shadows.isShadowed(behind, x, n, l, new IntersectionRecord()),
+        assertLit(behind, x, n, l, new IntersectionRecord(),
                 "expected lit: the only sphere is below x, the light above" + ctx(behind, x, n, l)
                         + "\n  hint: blockers at t < 0 are behind x");
     }
@@ -165,7 +185,7 @@ class ShadowsHiddenTest {
         Vec3 x = new Vec3(0, 1, 0);
         Vec3 n = new Vec3(0, 1, 0);
         PointLight l = light(new Vec3(0.2, -5, 0.1));
-        assertTrue(Shadows.isShadowed(ball, x, n, l, new IntersectionRecord()),
+        assertShadowed(ball, x, n, l, new IntersectionRecord(),
                 "expected shadowed: the light is below the ball, x on top of it" + ctx(ball, x, n, l)
                         + "\n  hint: the ray from x toward the light passes through the ball itself");
     }
@@ -182,12 +202,12 @@ class ShadowsHiddenTest {
         PointLight right = light(new Vec3(6, 4, 0));
         PointLight above = light(new Vec3(0.5, 20, 0.5));
         IntersectionRecord scratch = new IntersectionRecord();
-        assertFalse(Shadows.isShadowed(scene, x, n, left, scratch), "left light: expected lit" + ctx(scene, x, n, left)
+        assertLit(scene, x, n, left, scratch, "left light: expected lit" + ctx(scene, x, n, left)
                 + "\n  hint: each light gets its own shadow ray");
-        assertTrue(Shadows.isShadowed(scene, x, n, right, scratch),
+        assertShadowed(scene, x, n, right, scratch,
                 "right light: expected shadowed by the wall at x = 2..2.5" + ctx(scene, x, n, right)
                         + "\n  hint: each light gets its own shadow ray");
-        assertFalse(Shadows.isShadowed(scene, x, n, above, scratch), "light above: expected lit"
+        assertLit(scene, x, n, above, scratch, "light above: expected lit"
                 + ctx(scene, x, n, above) + "\n  hint: reuse of the scratch record must not leak an earlier blocker");
     }
 
@@ -198,7 +218,7 @@ class ShadowsHiddenTest {
         Vec3 x = new Vec3(1, 0, 2);
         Vec3 n = new Vec3(0, 1, 0);
         PointLight l = light(new Vec3(1.5, 0.05, 2));
-        assertFalse(Shadows.isShadowed(floor, x, n, l, new IntersectionRecord()),
+        assertLit(floor, x, n, l, new IntersectionRecord(),
                 "expected lit: the light hovers 0.05 above the floor" + ctx(floor, x, n, l)
                         + "\n  hint: the offset must be much smaller than the distance to the light");
     }
@@ -221,7 +241,7 @@ class ShadowsHiddenTest {
             Vec3 x = ball.center.plus(u.times(ball.radius));
             Group scene = new Group(List.of(floor, ball), "scene");
             PointLight l = light(lamp);
-            assertFalse(Shadows.isShadowed(scene, x, u, l, new IntersectionRecord()),
+            assertLit(scene, x, u, l, new IntersectionRecord(),
                     "expected lit: the lamp lies exactly on the floor, which the shadow ray reaches at t = 1 #" + i
                             + " (seed " + seed + ")" + ctx(scene, x, u, l)
                             + "\n  hint: only blockers with 0 < t < 1 count; a Ray's range is closed, so tMax must be"
@@ -245,7 +265,7 @@ class ShadowsHiddenTest {
         for (int i = 0; i < 100; i++) {
             Vec3 x = new Vec3(1 - uniform(r, 0.01, 0.5), 0, uniform(r, -3.5, 3.5));
             PointLight l = light(new Vec3(uniform(r, -20, x.x), uniform(r, 1, 20), uniform(r, -20, 20)));
-            assertFalse(Shadows.isShadowed(scene, x, n, l, new IntersectionRecord()),
+            assertLit(scene, x, n, l, new IntersectionRecord(),
                     "expected lit: x lies on the floor in front of the box and the light is on the open side #" + i
                             + " (seed " + seed + ")" + ctx(scene, x, n, l)
                             + "\n  hint: only blockers with 0 < t < 1 count; tMin = 0 on a closed range counts the floor"

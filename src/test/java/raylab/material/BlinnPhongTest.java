@@ -111,6 +111,7 @@ class BlinnPhongTest {
         BlinnPhong m = shiny(grey(1), 10);
         Check.color("specular with v and l swapped", m.specular(N, a, N, WHITE_LIGHT),
                 m.specular(N, N, a, WHITE_LIGHT), "h = (v + l)/‖v + l‖ treats v and l alike");
+        Check.specularControl();
     }
 
     @ParameterizedTest(name = "p = {0}")
@@ -123,6 +124,7 @@ class BlinnPhongTest {
                 WHITE_LIGHT);
         Check.color("specular with n·h = −1/√2, p = " + p, Color.BLACK, got,
                 "clamp before the power: max(0, n·h)^p (an even p turns a negative n·h positive)");
+        Check.specularControl();
     }
 
     @Test
@@ -130,6 +132,7 @@ class BlinnPhongTest {
     void blackKs() {
         Color got = shiny(Color.BLACK, 10).specular(N, N, N, WHITE_LIGHT);
         Check.color("specular with ks = 0", Color.BLACK, got, null);
+        Check.specularControl();
     }
 
     @Test

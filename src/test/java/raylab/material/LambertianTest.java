@@ -77,6 +77,7 @@ class LambertianTest {
     void horizon() {
         Color got = matte(1, 1, 1).diffuse(N, new Vec3(1, 0, 0), WHITE_LIGHT);
         Check.color("diffuse with l ⊥ n", Color.BLACK, got, null);
+        Check.diffuseControl();
     }
 
     @Test
@@ -89,6 +90,7 @@ class LambertianTest {
         got = matte(1, 0.5, 0.25).diffuse(N, new Vec3(0, 0, -1), WHITE_LIGHT);
         Check.color("diffuse with the light straight below (n·l = −1)", Color.BLACK, got,
                 "clamp: max(0, n·l), a light below the surface adds nothing");
+        Check.diffuseControl();
     }
 
     @Test
@@ -96,6 +98,7 @@ class LambertianTest {
     void blackSurface() {
         Color got = matte(0, 0, 0).diffuse(N, N, WHITE_LIGHT);
         Check.color("diffuse with kd = 0", Color.BLACK, got, null);
+        Check.diffuseControl();
     }
 
     @Test

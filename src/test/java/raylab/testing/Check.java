@@ -334,6 +334,86 @@ public final class Check {
                     "no hit (return false, record untouched: " + before + ")", rec, returned,
                     auto, hint));
         }
+        controlHit(s);
+    }
+
+    /**
+     * The control that a miss is scored with: the same code must hit the surface where a ray
+     * from outside, at an oblique angle with every component of d positive, passes through its
+     * centre (a sphere's centre, a box's centre, a triangle's centroid), with a t in the ray's
+     * range written to a fresh record. For a triangle a hit just outside the midpoint of one of
+     * its edges counts too (code with one edge test the wrong way round hits there and not at the
+     * centroid: it computes something, it is not a constant). Code that always misses passes
+     * every miss on its own; with the control it earns nothing for them. The exact t is the hit
+     * tests' business: here any hit counts. Surfaces of other kinds have no control.
+     */
+    public static void controlHit(Surface s) {
+        java.util.List<Ray> controls = controlRays(s);
+        if (controls.isEmpty()) {
+            return;
+        }
+        IntersectionRecord first = null;
+        boolean firstReturned = false;
+        for (Ray control : controls) {
+            IntersectionRecord rec = new IntersectionRecord();
+            double before = rec.t;
+            boolean returned = intersect(s, rec, control);
+            if (returned && rec.t != before && control.inRange(rec.t)) {
+                return;
+            }
+            if (first == null) {
+                first = rec;
+                firstReturned = returned;
+            }
+        }
+        fail(message("no hit on the control ray", s, controls.get(0),
+                "a hit: this ray passes through the centre of the surface from outside (a test of a miss counts"
+                        + " only when the same code hits the surface where it must)", first, firstReturned,
+                firstReturned ? "return true exactly when you write the record" : null));
+    }
+
+    /**
+     * The control rays of {@link #controlHit}: the first through the centre, from outside, with
+     * every component of d positive (no zero component, no negative one); for a triangle then one
+     * just outside the midpoint of each edge. Empty for a degenerate or unknown surface.
+     */
+    public static java.util.List<Ray> controlRays(Surface s) {
+        Vec3 out = new Vec3(0.36, 0.48, 0.8);
+        if (s instanceof Sphere sp) {
+            double size = Math.abs(sp.radius);
+            return size > 0 && Double.isFinite(size) ? java.util.List.of(toward(sp.center, out, size))
+                    : java.util.List.of();
+        } else if (s instanceof Box b) {
+            if (!(b.min.x < b.max.x && b.min.y < b.max.y && b.min.z < b.max.z)) {
+                return java.util.List.of(); // flat or empty: no centre to aim at
+            }
+            double size = b.max.minus(b.min).length();
+            return Double.isFinite(size) ? java.util.List.of(toward(b.min.plus(b.max).times(0.5), out, size))
+                    : java.util.List.of();
+        } else if (s instanceof Triangle tr) {
+            Vec3 n = tr.b.minus(tr.a).cross(tr.c.minus(tr.a));
+            double size = Math.max(tr.b.minus(tr.a).length(), tr.c.minus(tr.a).length());
+            if (!(n.length() > 0) || !Double.isFinite(size)) {
+                return java.util.List.of(); // degenerate: nothing to hit
+            }
+            // Mostly along the normal (whichever side has n·d < 0), tilted so that no component of d is zero.
+            Vec3 along = n.normalize().plus(new Vec3(0.03, 0.05, 0.07));
+            Vec3 g = tr.a.plus(tr.b).plus(tr.c).times(1.0 / 3);
+            java.util.List<Ray> rays = new java.util.ArrayList<>();
+            rays.add(toward(g, along.negate(), size));
+            for (Vec3[] edge : new Vec3[][] {{tr.a, tr.b}, {tr.b, tr.c}, {tr.c, tr.a}}) {
+                Vec3 m = edge[0].plus(edge[1]).times(0.5);
+                rays.add(toward(m.plus(m.minus(g).times(0.25)), along.negate(), size));
+            }
+            return rays;
+        }
+        return java.util.List.of();
+    }
+
+    /** A ray that travels along d (scaled to 3·size) and reaches x at t = 1. */
+    private static Ray toward(Vec3 x, Vec3 d, double size) {
+        Vec3 step = d.times(3 * size / d.length());
+        return new Ray(x.minus(step), step);
     }
 
     /**
@@ -413,6 +493,44 @@ public final class Check {
             fail(shadowMessage("shadowed", x, n, light, "lit (nothing blocks the light)", true,
                     scratch, hint));
         }
+        shadowControl(scene, x, n, light);
+    }
+
+    /**
+     * The control that "lit" is scored with: the same scene, point and light with a ball added
+     * halfway between x and the light (radius a quarter of their distance, so it touches neither)
+     * must shadow x. Code that always answers "lit" passes every lit case on its own; with the
+     * control it earns nothing for them. Nothing is asked of a light that casts no shadows.
+     */
+    public static void shadowControl(Surface scene, Vec3 x, Vec3 n, PointLight light) {
+        double distance = light.position.minus(x).length();
+        if (!light.castsShadows || !(distance > 0) || !Double.isFinite(distance)) {
+            return;
+        }
+        Sphere ball = new Sphere(x.plus(light.position).times(0.5), distance / 4,
+                new Lambertian(Color.WHITE, Color.BLACK, "control material"), "control ball");
+        Surface withBall = new raylab.surface.Group(java.util.List.of(scene, ball), "scene and control ball");
+        IntersectionRecord scratch = new IntersectionRecord();
+        if (!raylab.shading.Shadows.isShadowed(withBall, x, n, light, scratch)) {
+            fail(shadowMessage("not shadowed by the control ball", x, n, light, "shadowed by the control ball "
+                    + describe(ball) + ", added halfway between x and the light (a test of a lit point counts only"
+                    + " when the same code finds a blocker where there is one)", false, scratch, null));
+        }
+    }
+
+    /**
+     * The control that "shadowed" is scored with: the same point and light in an empty scene must
+     * be lit. Code that always answers "shadowed" passes every shadowed case on its own; with the
+     * control it earns nothing for them.
+     */
+    public static void litControl(Vec3 x, Vec3 n, PointLight light) {
+        Surface empty = new raylab.surface.Group(java.util.List.of(), "empty scene");
+        IntersectionRecord scratch = new IntersectionRecord();
+        if (raylab.shading.Shadows.isShadowed(empty, x, n, light, scratch)) {
+            fail(shadowMessage("shadowed in an empty scene", x, n, light, "lit: the control scene is empty, nothing can"
+                    + " block the light (a test of a shadow counts only when the same code finds the light where"
+                    + " nothing blocks it)", true, scratch, null));
+        }
     }
 
     private static String shadowMessage(String problem, Vec3 x, Vec3 n, PointLight light,
@@ -462,6 +580,43 @@ public final class Check {
             fail(what + "\n  expected: " + expected + "\n  got:      " + actual
                     + (hint == null ? "" : "\nHINT: " + hint) + "\n");
         }
+    }
+
+    /**
+     * The control that a black diffuse answer is scored with: kd = (0.5, 0.25, 1) lit straight
+     * from above (n = l, so n·l = 1) gives L_d = kd·I, for I = 1 and again for I = 2. A constant
+     * colour cannot pass both; black fails both.
+     */
+    public static void diffuseControl() {
+        Lambertian m = new Lambertian(new Color(0.5, 0.25, 1), Color.BLACK, "control matte");
+        Vec3 n = new Vec3(0, 0, 1);
+        color("control: diffuse with n = l = (0,0,1), kd = (0.5,0.25,1), I = (1,1,1) (a case of black counts only when"
+                + " the same code lights a surface facing the light)", new Color(0.5, 0.25, 1),
+                m.diffuse(n, n, new Color(1, 1, 1)), null);
+        color("control: diffuse with n = l = (0,0,1), kd = (0.5,0.25,1), I = (2,2,2)", new Color(1, 0.5, 2),
+                m.diffuse(n, n, new Color(2, 2, 2)), null);
+    }
+
+    /**
+     * The control that a black (or constant) highlight is scored with: ks = (0.5, 0.25, 1) seen and
+     * lit along n (h = n, the full highlight) must give a highlight that is not black, and twice
+     * the light, I = 2 instead of 1, must give twice it (L_s = ks·I·max(0, n·h)^p is linear in
+     * I). A constant colour fails: black is black, any other constant does not double. What the
+     * highlight is exactly is the other tests' business.
+     */
+    public static void specularControl() {
+        raylab.material.BlinnPhong m = new raylab.material.BlinnPhong(Color.BLACK, new Color(0.5, 0.25, 1), 10,
+                Color.BLACK, "control shiny");
+        Vec3 n = new Vec3(0, 0, 1);
+        Color once = m.specular(n, n, n, new Color(1, 1, 1));
+        Color twice = m.specular(n, n, n, new Color(2, 2, 2));
+        String what = "control: specular with n = l = v = (0,0,1), ks = (0.5,0.25,1), p = 10 (a case of black or of two"
+                + " equal highlights counts only when the same code shows a highlight that grows with the light)";
+        if (once == null || !(once.r > 0 || once.g > 0 || once.b > 0)) {
+            fail(what + "\n  expected: a highlight (not black) for I = (1,1,1)\n  got:      " + once + "\n");
+        }
+        color(what + ", I = (2,2,2) against I = (1,1,1)", new Color(2 * once.r, 2 * once.g, 2 * once.b), twice,
+                "L_s = ks·I·max(0, n·h)^p: twice the light gives twice the highlight");
     }
 
     private static boolean close(double expected, double actual) {
