@@ -8,9 +8,6 @@ import raylab.math.Color;
 import raylab.math.Vec3;
 import raylab.ray.IntersectionRecord;
 import raylab.ray.Ray;
-import raylab.surface.Group;
-import raylab.surface.Mesh;
-import raylab.surface.Sphere;
 import raylab.surface.Surface;
 
 /**
@@ -80,10 +77,7 @@ final class ContractCheck {
      * plane (a slab) or in a triangle's plane.
      */
     static void walk(List<Surface> surfaces, Ray ray, PrintWriter out) {
-        List<Surface> leaves = new ArrayList<>();
-        for (Surface s : surfaces) {
-            flatten(s, leaves);
-        }
+        List<Surface> leaves = raylab.render.RenderPlan.primitives(surfaces);
         IntersectionRecord rec = new IntersectionRecord();
         List<String> answers = new ArrayList<>();
         List<String> misses = new ArrayList<>();
@@ -139,9 +133,11 @@ final class ContractCheck {
                 if (nan != null) {
                     rules.add(nan);
                 }
-                if (s instanceof Sphere sp && rec.normal != null && rec.point != null
-                        && rec.normal.dot(rec.point.minus(sp.center)) < 0) {
-                    rules.add("a sphere's normal points out of the sphere, (x - c)/R; this one points into it");
+                for (raylab.scene.SurfaceType t : raylab.scene.SurfaceTypes.all().values()) {
+                    String rule = t.traceRule(s, rec.point, rec.normal);
+                    if (rule != null) {
+                        rules.add(rule); // the sphere's: its normal points out of it
+                    }
                 }
             }
             broken += rules.isEmpty() ? 0 : 1;
@@ -210,15 +206,5 @@ final class ContractCheck {
             note.append(t.traceNote(s, ray));
         }
         return note.toString();
-    }
-
-    private static void flatten(Surface s, List<Surface> out) {
-        if (s instanceof Group g) {
-            g.members().forEach(m -> flatten(m, out));
-        } else if (s instanceof Mesh m) {
-            out.addAll(m.triangles());
-        } else {
-            out.add(s);
-        }
     }
 }

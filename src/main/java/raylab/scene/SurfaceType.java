@@ -87,6 +87,34 @@ public interface SurfaceType {
     }
 
     /**
+     * What {@code raylab trace} says is wrong with a hit on a surface of this type beyond the
+     * rules every surface keeps ("a sphere's normal points out of the sphere, ..."), or null (the
+     * default). Called for every surface: answer null for one that is not of this type.
+     */
+    default String traceRule(Surface s, Vec3 point, Vec3 normal) {
+        return null;
+    }
+
+    /**
+     * For the render plan's shadow-ray rule (raylab.render.RenderPlan.seenFromOutsideOnly):
+     * whether {@code eye} lies outside a surface of this type that is a convex solid, by more
+     * than {@code margin} of its size; null when {@code s} is not of this type or the type cannot
+     * say (the default), and the plan traces every shadow ray.
+     */
+    default Boolean eyeOutsideConvex(Surface s, Vec3 eye, double margin) {
+        return null;
+    }
+
+    /**
+     * The primitives a surface of this type is made of, each traced on its own by the plan's
+     * brute force and by {@code raylab trace} (a mesh's triangles), or null when {@code s} is not
+     * of this type or is one primitive (the default).
+     */
+    default List<Surface> primitives(Surface s) {
+        return null;
+    }
+
+    /**
      * Whether a data case (grader/README.md, "Data cases") may have a surface of this type: true
      * unless overridden (a mesh may not).
      */

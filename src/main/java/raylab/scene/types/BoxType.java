@@ -63,6 +63,23 @@ public final class BoxType implements SurfaceType {
         Moves.point(s, "max", d);
     }
 
+    /** Outside when the eye is beyond a slab by margin times the box's size (or its distance from 0). */
+    @Override
+    public Boolean eyeOutsideConvex(Surface s, Vec3 eye, double margin) {
+        if (!(s instanceof Box box) || !s.isConvex()) {
+            return null;
+        }
+        double size = box.max.minus(box.min).maxAbs();
+        double m = margin * Math.max(size, box.min.maxAbs() + box.max.maxAbs());
+        for (int axis = 0; axis < 3; axis++) {
+            double e = eye.get(axis);
+            if (e < box.min.get(axis) - m || e > box.max.get(axis) + m) {
+                return true;
+            }
+        }
+        return false;
+    }
+
     @Override
     public String caseProblem(JsonNode s) {
         return CaseJson.vec3Problem(s, "min", "max");

@@ -68,6 +68,12 @@ public final class MeshType implements SurfaceType {
         Moves.point(s, "translate", d);
     }
 
+    /** Its triangles. */
+    @Override
+    public List<Surface> primitives(Surface s) {
+        return s instanceof Mesh mesh ? List.copyOf(mesh.triangles()) : null;
+    }
+
     @Override
     public boolean inDataCases() {
         return false;

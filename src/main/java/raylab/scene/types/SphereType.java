@@ -6,6 +6,7 @@ import com.fasterxml.jackson.databind.JsonNode;
 import com.fasterxml.jackson.databind.node.ObjectNode;
 
 import raylab.material.Material;
+import raylab.math.Vec3;
 import raylab.scene.SceneException;
 import raylab.scene.SurfaceType;
 import raylab.surface.Sphere;
@@ -44,6 +45,23 @@ public final class SphereType implements SurfaceType {
     @Override
     public void move(ObjectNode s, double[] d) {
         Moves.point(s, "center", d);
+    }
+
+    @Override
+    public String traceRule(Surface s, Vec3 point, Vec3 normal) {
+        if (s instanceof Sphere sp && normal != null && point != null && normal.dot(point.minus(sp.center)) < 0) {
+            return "a sphere's normal points out of the sphere, (x - c)/R; this one points into it";
+        }
+        return null;
+    }
+
+    /** Outside when ‖eye − c‖ &gt; r (1 + margin). */
+    @Override
+    public Boolean eyeOutsideConvex(Surface s, Vec3 eye, double margin) {
+        if (!(s instanceof Sphere sphere) || !s.isConvex()) {
+            return null;
+        }
+        return eye.minus(sphere.center).length() > sphere.radius * (1 + margin);
     }
 
     @Override
