@@ -11,8 +11,6 @@ import raylab.math.Color;
 import raylab.math.Vec3;
 import raylab.ray.IntersectionRecord;
 import raylab.ray.Ray;
-import raylab.surface.Box;
-import raylab.surface.Sphere;
 import raylab.surface.Surface;
 import raylab.surface.Triangle;
 
@@ -92,24 +90,14 @@ public final class CaseCheck {
         }
     }
 
+    /** The case's surface, built as its type says (raylab.scene.SurfaceType.buildCase). */
     static Surface surface(JsonNode s) {
-        FlatColor m = new FlatColor(Color.WHITE, "white");
-        String type = s.path("type").asText();
-        return switch (type) {
-            case "sphere" -> new Sphere(vec(s.get("center")), s.get("radius").asDouble(), m, "sphere");
-            case "box" -> new Box(vec(s.get("min")), vec(s.get("max")), m, "box");
-            case "triangle" -> new Triangle(vec(s.get("a")), vec(s.get("b")), vec(s.get("c")), m, "triangle");
-            default -> extension(s);
-        };
-    }
-
-    /** A surface of a type registered on the class path (raylab.scene.SurfaceType), built by the scene loader. */
-    private static Surface extension(JsonNode s) {
-        if (!raylab.scene.SurfaceTypes.extensions().containsKey(s.path("type").asText())) {
+        raylab.scene.SurfaceType type = raylab.scene.SurfaceTypes.all().get(s.path("type").asText());
+        if (type == null || !type.inDataCases()) {
             throw new IllegalArgumentException("unknown surface type '" + s.path("type").asText() + "'");
         }
         try {
-            return raylab.scene.SurfaceTypes.build(s);
+            return type.buildCase(s, new FlatColor(Color.WHITE, "white"));
         } catch (raylab.scene.SceneException e) {
             throw new IllegalArgumentException(e.getMessage());
         }

@@ -8,9 +8,6 @@ import raylab.math.Color;
 import raylab.math.Vec3;
 import raylab.ray.IntersectionRecord;
 import raylab.ray.Ray;
-import raylab.surface.Group;
-import raylab.surface.Mesh;
-import raylab.surface.Sphere;
 import raylab.surface.Surface;
 
 /**
@@ -80,10 +77,7 @@ final class ContractCheck {
      * plane (a slab) or in a triangle's plane.
      */
     static void walk(List<Surface> surfaces, Ray ray, PrintWriter out) {
-        List<Surface> leaves = new ArrayList<>();
-        for (Surface s : surfaces) {
-            flatten(s, leaves);
-        }
+        List<Surface> leaves = raylab.render.RenderPlan.primitives(surfaces);
         IntersectionRecord rec = new IntersectionRecord();
         List<String> answers = new ArrayList<>();
         List<String> misses = new ArrayList<>();
@@ -148,9 +142,11 @@ final class ContractCheck {
                 if (nan != null) {
                     rules.add(nan);
                 }
-                if (s instanceof Sphere sp && rec.normal != null && rec.point != null
-                        && rec.normal.dot(rec.point.minus(sp.center)) < 0) {
-                    rules.add("a sphere's normal points out of the sphere, (x - c)/R; this one points into it");
+                for (raylab.scene.SurfaceType t : raylab.scene.SurfaceTypes.all().values()) {
+                    String rule = t.traceRule(s, rec.point, rec.normal);
+                    if (rule != null) {
+                        rules.add(rule); // the sphere's: its normal points out of it
+                    }
                 }
             }
             broken += rules.isEmpty() ? 0 : 1;
@@ -237,50 +233,11 @@ final class ContractCheck {
 
     /** "; the ray lies in the plane x = 1 of a face (a slab with d.x = 0)" and the like, or "". */
     static String planeNote(Surface s, Ray ray) {
-        if (s instanceof raylab.surface.Box b) {
-            StringBuilder note = new StringBuilder();
-            String[] axis = {"x", "y", "z"};
-            for (int i = 0; i < 3; i++) {
-                if (ray.d.get(i) != 0) {
-                    continue;
-                }
-                double p = ray.p.get(i);
-                String n = axis[i];
-                if (p == b.min.get(i) || p == b.max.get(i)) {
-                    note.append("; the ray lies in the plane ").append(n).append(" = ").append(TraceCommand.num(p))
-                            .append(" of a face: in the slab of ").append(n).append(", d.").append(n)
-                            .append(" = 0 and p.").append(n).append(" is on its boundary (0/0 = NaN)");
-                } else if (p < b.min.get(i) || p > b.max.get(i)) {
-                    note.append("; d.").append(n).append(" = 0 and p.").append(n).append(" = ")
-                            .append(TraceCommand.num(p)).append(" lies outside the slab of ").append(n)
-                            .append(": the ray never enters it");
-                }
-            }
-            return note.toString();
-        }
-        if (s instanceof raylab.surface.Triangle tr) {
-            Vec3 n = tr.b.minus(tr.a).cross(tr.c.minus(tr.a));
-            if (n.dot(ray.d) != 0) {
-                return "";
-            }
-            return n.dot(ray.p.minus(tr.a)) == 0 ? "; the ray lies in the triangle's plane (n·d = 0 and n·(p - a) = 0)"
-                    : "; the ray is parallel to the triangle's plane (n·d = 0)";
-        }
-        // A surface type registered on the class path says what it knows (raylab.scene.SurfaceType).
+        // Each surface type says what it knows (raylab.scene.SurfaceType.traceNote).
         StringBuilder note = new StringBuilder();
-        for (raylab.scene.SurfaceType t : raylab.scene.SurfaceTypes.extensions().values()) {
+        for (raylab.scene.SurfaceType t : raylab.scene.SurfaceTypes.all().values()) {
             note.append(t.traceNote(s, ray));
         }
         return note.toString();
-    }
-
-    private static void flatten(Surface s, List<Surface> out) {
-        if (s instanceof Group g) {
-            g.members().forEach(m -> flatten(m, out));
-        } else if (s instanceof Mesh m) {
-            out.addAll(m.triangles());
-        } else {
-            out.add(s);
-        }
     }
 }

@@ -137,8 +137,7 @@ public final class TraceCommand implements Callable<Integer> {
     }
 
     static String num(double v) {
-        return Double.isFinite(v) ? String.format("%.6g", v).replaceFirst("(\\.\\d*?)0+$", "$1").replaceFirst("\\.$", "")
-                : Double.toString(v);
+        return raylab.scene.Display.traced(v);
     }
 
     static String v(Vec3 a) {

@@ -22,7 +22,6 @@ import raylab.course.Assignment;
  */
 public final class DataCases {
     private static final ObjectMapper JSON = new ObjectMapper();
-    private static final Set<String> SURFACES = Set.of("sphere", "box", "triangle");
     private static final Set<String> VISIBILITIES = Set.of("visible", "hidden", "after_due_date", "after_published");
 
     /** One case: its name, points, visibility, the generated test method and the JSON text. */
@@ -110,37 +109,16 @@ public final class DataCases {
             throw new IOException(where + ": \"visibility\" must be one of " + VISIBILITIES);
         }
         JsonNode s = c.get("surface");
-        if (s != null && raylab.scene.SurfaceTypes.extensions().containsKey(s.path("type").asText())) {
-            // A registered surface type: its scene-format keys, checked by the scene loader.
-            try {
-                raylab.scene.SurfaceTypes.build(s);
-            } catch (raylab.scene.SceneException e) {
-                throw new IOException(where + ": \"surface\": " + e.getMessage());
-            }
-        } else if (s == null || !SURFACES.contains(s.path("type").asText())) {
-            java.util.List<String> types = new java.util.ArrayList<>(java.util.List.of("sphere", "box", "triangle"));
-            types.addAll(raylab.scene.SurfaceTypes.extensions().keySet());
+        raylab.scene.SurfaceType type = s == null ? null : raylab.scene.SurfaceTypes.all().get(s.path("type").asText());
+        if (type == null || !type.inDataCases()) {
+            java.util.List<String> types = new java.util.ArrayList<>();
+            raylab.scene.SurfaceTypes.all().values().stream().filter(raylab.scene.SurfaceType::inDataCases)
+                    .forEach(t -> types.add(t.type()));
             throw new IOException(where + ": \"surface\" needs a \"type\" of " + types);
         }
-        switch (s.get("type").asText()) {
-            case "sphere" -> {
-                vec(s, "center", where);
-                if (!s.path("radius").isNumber() || s.get("radius").asDouble() <= 0) {
-                    throw new IOException(where + ": sphere \"radius\" must be a number > 0");
-                }
-            }
-            case "box" -> {
-                vec(s, "min", where);
-                vec(s, "max", where);
-            }
-            case "triangle" -> {
-                vec(s, "a", where);
-                vec(s, "b", where);
-                vec(s, "c", where);
-            }
-            default -> {
-                // a registered surface type, checked above
-            }
+        String problem = type.caseProblem(s);
+        if (problem != null) {
+            throw new IOException(where + ": " + problem);
         }
         JsonNode r = c.get("ray");
         if (r == null) {
@@ -166,10 +144,9 @@ public final class DataCases {
     }
 
     private static void vec(JsonNode parent, String field, String where) throws IOException {
-        JsonNode v = parent.get(field);
-        if (v == null || !v.isArray() || v.size() != 3 || !v.get(0).isNumber() || !v.get(1).isNumber()
-                || !v.get(2).isNumber()) {
-            throw new IOException(where + ": \"" + field + "\" must be an array of 3 numbers");
+        String problem = raylab.scene.types.CaseJson.vec3Problem(parent, field);
+        if (problem != null) {
+            throw new IOException(where + ": " + problem);
         }
     }
 

@@ -144,29 +144,13 @@ public final class SceneVariants {
         return a;
     }
 
+    /** Moves a surface as its type says ({@link raylab.scene.SurfaceType#move}). */
     private static void move(ObjectNode s, double[] d) {
-        switch (s.path("type").asText()) {
-            case "sphere" -> s.set("center", vec(add(vec(s.get("center")), d)));
-            case "box" -> {
-                s.set("min", vec(add(vec(s.get("min")), d)));
-                s.set("max", vec(add(vec(s.get("max")), d)));
-            }
-            case "triangle" -> {
-                ArrayNode out = s.arrayNode();
-                for (JsonNode v : s.get("vertices")) {
-                    out.add(vec(add(vec(v), d)));
-                }
-                s.set("vertices", out);
-            }
-            case "mesh" -> s.set("translate", vec(add(s.has("translate") ? vec(s.get("translate")) : new double[3], d)));
-            default -> {
-                raylab.scene.SurfaceType t = raylab.scene.SurfaceTypes.extensions().get(s.path("type").asText());
-                if (t == null) {
-                    throw new IllegalArgumentException("cannot move a surface of type " + s.path("type").asText());
-                }
-                t.move(s, d);
-            }
+        raylab.scene.SurfaceType t = raylab.scene.SurfaceTypes.all().get(s.path("type").asText());
+        if (t == null) {
+            throw new IllegalArgumentException("cannot move a surface of type " + s.path("type").asText());
         }
+        t.move(s, d);
     }
 
     /** SplitMix64 (Steele, Lea and Flood 2014): the generator and its finalizer. */

@@ -8,9 +8,6 @@ import raylab.light.PointLight;
 import raylab.material.Material;
 import raylab.math.Vec3;
 import raylab.scene.Scene;
-import raylab.surface.Box;
-import raylab.surface.Mesh;
-import raylab.surface.Sphere;
 import raylab.surface.Surface;
 
 /**
@@ -207,20 +204,12 @@ public final class RenderPlan {
         }
         Surface s = scene.surfaces.get(0);
         Vec3 eye = scene.camera.eye;
-        if (s instanceof Sphere sphere && s.isConvex()) {
-            double dist = eye.minus(sphere.center).length();
-            return dist > sphere.radius * (1 + OUTSIDE_MARGIN);
-        }
-        if (s instanceof Box box && s.isConvex()) {
-            double size = box.max.minus(box.min).maxAbs();
-            double margin = OUTSIDE_MARGIN * Math.max(size, box.min.maxAbs() + box.max.maxAbs());
-            for (int axis = 0; axis < 3; axis++) {
-                double e = eye.get(axis);
-                if (e < box.min.get(axis) - margin || e > box.max.get(axis) + margin) {
-                    return true;
-                }
+        // The surface's type says (raylab.scene.SurfaceType.eyeOutsideConvex: the sphere, the box).
+        for (raylab.scene.SurfaceType t : raylab.scene.SurfaceTypes.all().values()) {
+            Boolean outside = t.eyeOutsideConvex(s, eye, OUTSIDE_MARGIN);
+            if (outside != null) {
+                return outside;
             }
-            return false;
         }
         return false;
     }
@@ -253,18 +242,29 @@ public final class RenderPlan {
                 : new raylab.surface.Group(scene.surfaces, "scene");
     }
 
-    /** Every primitive of the surfaces, in order: meshes and groups split into their members. */
+    /**
+     * Every primitive of the surfaces, in order: groups split into their members, and surfaces
+     * made of primitives into those (raylab.scene.SurfaceType.primitives: a mesh's triangles).
+     */
     public static List<Surface> primitives(List<Surface> surfaces) {
         List<Surface> out = new ArrayList<>();
         for (Surface s : surfaces) {
-            if (s instanceof Mesh mesh) {
-                out.addAll(mesh.triangles());
-            } else if (s instanceof raylab.surface.Group g) {
+            if (s instanceof raylab.surface.Group g) {
                 out.addAll(primitives(g.members()));
             } else {
-                out.add(s);
+                out.addAll(madeOf(s));
             }
         }
         return out;
+    }
+
+    private static List<Surface> madeOf(Surface s) {
+        for (raylab.scene.SurfaceType t : raylab.scene.SurfaceTypes.all().values()) {
+            List<Surface> parts = t.primitives(s);
+            if (parts != null) {
+                return parts;
+            }
+        }
+        return List.of(s);
     }
 }

@@ -101,4 +101,18 @@ public final class Display {
         }
         return false;
     }
+
+    /** A number as scene messages show it: a whole number without ".0", else Java's shortest form. */
+    public static String number(double d) {
+        if (d == Math.rint(d) && Math.abs(d) < 1e15) {
+            return Long.toString((long) d);
+        }
+        return Double.toString(d);
+    }
+
+    /** A number as {@code raylab trace} shows it: six significant digits, trailing zeros dropped. */
+    public static String traced(double v) {
+        return Double.isFinite(v) ? String.format("%.6g", v).replaceFirst("(\\.\\d*?)0+$", "$1").replaceFirst("\\.$", "")
+                : Double.toString(v);
+    }
 }

@@ -34,10 +34,6 @@ import raylab.math.Color;
 import raylab.math.Vec3;
 import raylab.scene.JsonTree.Kind;
 import raylab.scene.JsonTree.Node;
-import raylab.surface.Box;
-import raylab.surface.Mesh;
-import raylab.surface.Sphere;
-import raylab.surface.Triangle;
 
 /**
  * Reads scene files (JSON, see docs/scene-format.md and scenes/scene.schema.json).
@@ -65,9 +61,8 @@ public final class SceneLoader {
     /** For each kind of JSON object, the keys it must have (lookAt|viewDirection aside). */
     public static final Map<String, List<String>> REQUIRED_KEYS;
 
-    /** Surface "type" values and their kinds. */
-    static final Map<String, String> SURFACE_TYPES = withExtensions(ordered(
-            "sphere", "sphere", "box", "box", "triangle", "triangle", "mesh", "mesh"));
+    /** Surface "type" values and their kinds: every {@link SurfaceTypes#all() surface type}, each its own kind. */
+    static final Map<String, String> SURFACE_TYPES = surfaceTypes();
     /** Material "type" values and their kinds. */
     static final Map<String, String> MATERIAL_TYPES = ordered(
             "lambertian", "lambertian", "blinnPhong", "blinnPhong", "flat", "flat",
@@ -89,13 +84,9 @@ public final class SceneLoader {
             "blinnPhong", "a blinnPhong material",
             "flat", "a flat material",
             "normals", "a normals material",
-            "sphere", "a sphere",
-            "box", "a box",
-            "triangle", "a triangle",
-            "mesh", "a mesh",
             "pointLight", "a point light");
-    /** How messages name each extension surface type ({@link SurfaceType#description}). */
-    private static final Map<String, String> EXTENSION_NAMES = new LinkedHashMap<>();
+    /** How messages name each surface type ({@link SurfaceType#description}). */
+    private static final Map<String, String> SURFACE_NAMES = new LinkedHashMap<>();
 
     static {
         Map<String, List<String>> a = new LinkedHashMap<>();
@@ -120,20 +111,17 @@ public final class SceneLoader {
         r.put("flat", List.of("type", "color"));
         a.put("normals", List.of("type"));
         r.put("normals", List.of("type"));
-        a.put("sphere", List.of("type", "name", "center", "radius", "material"));
-        r.put("sphere", List.of("type", "center", "radius", "material"));
-        a.put("box", List.of("type", "name", "min", "max", "material"));
-        r.put("box", List.of("type", "min", "max", "material"));
-        a.put("triangle", List.of("type", "name", "vertices", "material"));
-        r.put("triangle", List.of("type", "vertices", "material"));
-        a.put("mesh", List.of("type", "name", "file", "material", "scale", "translate"));
-        r.put("mesh", List.of("type", "file", "material"));
+        for (SurfaceType t : SurfaceTypes.builtIn().values()) {
+            a.put(t.type(), List.copyOf(t.keys()));
+            r.put(t.type(), List.copyOf(t.requiredKeys()));
+            SURFACE_NAMES.put(t.type(), t.description());
+        }
         a.put("pointLight", List.of("type", "name", "position", "intensity", "shadows"));
         r.put("pointLight", List.of("type", "position", "intensity"));
         for (SurfaceType t : SurfaceTypes.extensions().values()) {
             a.put(t.type(), List.copyOf(t.keys()));
             r.put(t.type(), List.copyOf(t.requiredKeys()));
-            EXTENSION_NAMES.put(t.type(), t.description());
+            SURFACE_NAMES.put(t.type(), t.description());
         }
         ACCEPTED_KEYS = java.util.Collections.unmodifiableMap(a);
         REQUIRED_KEYS = java.util.Collections.unmodifiableMap(r);
@@ -461,43 +449,10 @@ public final class SceneLoader {
         String kind = typed(n, SURFACE_TYPES, "surface");
         String name = name(n, n.get("type").text + " #" + index);
         Material m = materialRef(n.get("material"), materials);
-        switch (kind) {
-            case "sphere":
-                b.add(new Sphere(vec3(n.get("center")), positive(n.get("radius"), "radius"), m, name));
-                return;
-            case "box": {
-                Vec3 min = vec3(n.get("min"));
-                Vec3 max = vec3(n.get("max"));
-                for (int axis = 0; axis < 3; axis++) {
-                    if (min.get(axis) > max.get(axis)) {
-                        String c = "xyz".substring(axis, axis + 1);
-                        throw fail(n.get("max"), "max." + c + " = " + fmt(max.get(axis))
-                                + " is less than min." + c + " = " + fmt(min.get(axis))
-                                + "; a box needs min <= max in every axis");
-                    }
-                }
-                b.add(new Box(min, max, m, name));
-                return;
-            }
-            case "triangle": {
-                Node vs = array(n.get("vertices"));
-                if (vs.items.size() != 3) {
-                    throw fail(vs, "expected 3 vertices [[x, y, z], [x, y, z], [x, y, z]], got "
-                            + vs.items.size());
-                }
-                b.add(new Triangle(vec3(vs.items.get(0)), vec3(vs.items.get(1)),
-                        vec3(vs.items.get(2)), m, name));
-                return;
-            }
-            case "mesh":
-                b.add(mesh(n, name, m));
-                return;
-            default:
-                b.add(SurfaceTypes.extensions().get(kind).build(fields(n), m, name));
-        }
+        b.add(SurfaceTypes.all().get(kind).build(fields(n), m, name));
     }
 
-    /** An extension surface's keys, read with this loader's checks and messages. */
+    /** A surface's keys, read with this loader's checks and messages ({@link SurfaceType.Fields}). */
     private SurfaceType.Fields fields(Node n) {
         return new SurfaceType.Fields() {
             @Override
@@ -521,6 +476,26 @@ public final class SceneLoader {
             }
 
             @Override
+            public String string(String key) throws SceneException {
+                return SceneLoader.this.string(present(key));
+            }
+
+            @Override
+            public int count(String key) throws SceneException {
+                return array(present(key)).items.size();
+            }
+
+            @Override
+            public Vec3 vec3(String key, int index) throws SceneException {
+                return SceneLoader.this.vec3(array(present(key)).items.get(index));
+            }
+
+            @Override
+            public SurfaceType.ObjFile objFile(String key) throws SceneException {
+                return obj(present(key));
+            }
+
+            @Override
             public SceneException fail(String key, String message) {
                 return SceneLoader.this.fail(n.has(key) ? n.get(key) : n, message);
             }
@@ -538,36 +513,29 @@ public final class SceneLoader {
         return kindNameOf(n.has("type") ? String.valueOf(n.get("type").text) : "");
     }
 
-    /** How messages name a kind of object: "a sphere", or an extension's own description. */
+    /** How messages name a kind of object: "a perspective camera", or a surface type's description. */
     private static String kindNameOf(String kind) {
-        String builtIn = KIND_NAMES.get(kind);
-        return builtIn != null ? builtIn : EXTENSION_NAMES.getOrDefault(kind, "a " + kind);
+        String named = KIND_NAMES.get(kind);
+        return named != null ? named : SURFACE_NAMES.getOrDefault(kind, "a " + kind);
     }
 
     /** The built-in surface types followed by those registered on the class path ({@link SurfaceTypes}). */
-    private static Map<String, String> withExtensions(Map<String, String> builtIn) {
-        Map<String, String> m = new LinkedHashMap<>(builtIn);
-        for (String t : SurfaceTypes.extensions().keySet()) {
+    private static Map<String, String> surfaceTypes() {
+        Map<String, String> m = new LinkedHashMap<>();
+        for (String t : SurfaceTypes.all().keySet()) {
             m.put(t, t);
         }
         return java.util.Collections.unmodifiableMap(m);
     }
 
-    private Mesh mesh(Node n, String name, Material m) throws SceneException {
-        Node fileNode = n.get("file");
+    /** The OBJ file a surface's key names, relative to the scene file's directory, read and parsed. */
+    private SurfaceType.ObjFile obj(Node fileNode) throws SceneException {
         String rel = string(fileNode);
-        if (rel.isBlank()) {
-            throw fail(fileNode, "file must not be empty: give the path of an OBJ file");
-        }
-        double scale = n.has("scale") ? positive(n.get("scale"), "scale") : 1;
-        Vec3 translate = n.has("translate") ? vec3(n.get("translate")) : Vec3.ZERO;
-        Path obj;
-        double[] v;
         try {
-            obj = dir == null ? Path.of(rel) : dir.resolve(rel);
+            Path obj = dir == null ? Path.of(rel) : dir.resolve(rel);
             String display = Display.path(obj);
             refuseSpecialFile(obj, display, "an OBJ file");
-            v = ObjLoader.read(obj, display).triangleVertices();
+            return new SurfaceType.ObjFile(display, ObjLoader.read(obj, display).triangleVertices());
         } catch (ObjLoader.ObjException e) {
             throw fail(fileNode, Display.escape(e.getMessage()));
         } catch (SceneException e) {
@@ -577,20 +545,6 @@ public final class SceneLoader {
                     ? "the file name contains a lone surrogate (half of a UTF-16 pair), which no file"
                     + " name can contain" : invalidPath(e)));
         }
-        // Each coordinate as Vec3.times(scale).plus(translate) would compute it.
-        double tx = translate.x;
-        double ty = translate.y;
-        double tz = translate.z;
-        for (int i = 0; i < v.length; i += 3) {
-            v[i] = v[i] * scale + tx;
-            v[i + 1] = v[i + 1] * scale + ty;
-            v[i + 2] = v[i + 2] * scale + tz;
-            if (!Double.isFinite(v[i]) || !Double.isFinite(v[i + 1]) || !Double.isFinite(v[i + 2])) {
-                throw fail(n.has("scale") ? n.get("scale") : fileNode, "scaling and translating "
-                        + Display.path(obj) + " gives coordinates too large to represent");
-            }
-        }
-        return new Mesh(v, m, name);
     }
 
     private Material materialRef(Node n, Map<String, Material> materials) throws SceneException {
@@ -817,10 +771,7 @@ public final class SceneLoader {
     }
 
     private static String fmt(double d) {
-        if (d == Math.rint(d) && Math.abs(d) < 1e15) {
-            return Long.toString((long) d);
-        }
-        return Double.toString(d);
+        return Display.number(d);
     }
 
     /**

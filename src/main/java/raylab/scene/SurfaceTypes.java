@@ -9,22 +9,51 @@ import java.util.ServiceLoader;
 import java.util.Set;
 
 /**
- * The surface types registered on the class path ({@link SurfaceType}, {@link ServiceLoader}),
- * read once. A type that takes a built-in name, repeats another's, or cannot be loaded stops the
- * loader with one line that names it.
+ * The surface types: the built-in ones ({@link #BUILT_IN}) and those registered on the class path
+ * ({@link SurfaceType}, {@link ServiceLoader}), read once. A type that takes a built-in name,
+ * repeats another's, or cannot be loaded stops the loader with one line that names it.
+ *
+ * <p>The built-in types are listed here rather than in a {@code META-INF/services} file of the
+ * framework's: an instructor's tree has its own such file (its path is the same), which must not
+ * have to repeat them, and a class path without it must still know spheres.
  */
 public final class SurfaceTypes {
     /** The built-in surface types, in documentation order. */
-    public static final List<String> BUILT_IN = List.of("sphere", "box", "triangle", "mesh");
+    public static final List<SurfaceType> BUILT_IN = List.of(new raylab.scene.types.SphereType(),
+            new raylab.scene.types.BoxType(), new raylab.scene.types.TriangleType(), new raylab.scene.types.MeshType());
 
+    private static final Map<String, SurfaceType> BUILT_IN_BY_TYPE = byType(BUILT_IN);
     private static final Map<String, SurfaceType> EXTENSIONS = load();
+    private static final Map<String, SurfaceType> ALL = all(BUILT_IN_BY_TYPE, EXTENSIONS);
 
     private SurfaceTypes() {
+    }
+
+    /** The built-in types by their {@code "type"}: sphere, box, triangle, mesh. */
+    public static Map<String, SurfaceType> builtIn() {
+        return BUILT_IN_BY_TYPE;
     }
 
     /** The registered extension types by their {@code "type"}, in class path order. */
     public static Map<String, SurfaceType> extensions() {
         return EXTENSIONS;
+    }
+
+    /** Every surface type by its {@code "type"}: the built-in ones, then the extensions. */
+    public static Map<String, SurfaceType> all() {
+        return ALL;
+    }
+
+    private static Map<String, SurfaceType> byType(List<SurfaceType> types) {
+        Map<String, SurfaceType> m = new LinkedHashMap<>();
+        types.forEach(t -> m.put(t.type(), t));
+        return java.util.Collections.unmodifiableMap(m);
+    }
+
+    private static Map<String, SurfaceType> all(Map<String, SurfaceType> builtIn, Map<String, SurfaceType> extensions) {
+        Map<String, SurfaceType> m = new LinkedHashMap<>(builtIn);
+        m.putAll(extensions);
+        return java.util.Collections.unmodifiableMap(m);
     }
 
     /**
@@ -103,9 +132,9 @@ public final class SurfaceTypes {
                 String type = t.type();
                 if (type == null || !type.matches("[a-z][A-Za-z0-9]*")) {
                     problems.add(t.getClass().getName() + ": type " + type + " is not a lowercase word");
-                } else if (BUILT_IN.contains(type) || out.containsKey(type)) {
+                } else if (BUILT_IN_BY_TYPE.containsKey(type) || out.containsKey(type)) {
                     problems.add(t.getClass().getName() + ": type \"" + type + "\" is taken by "
-                            + (BUILT_IN.contains(type) ? "a built-in surface" : out.get(type).getClass().getName()));
+                            + (BUILT_IN_BY_TYPE.containsKey(type) ? "a built-in surface" : out.get(type).getClass().getName()));
                 } else if (!t.keys().containsAll(Set.of("type", "name", "material"))
                         || !t.keys().containsAll(t.requiredKeys()) || !t.requiredKeys().containsAll(Set.of("type", "material"))) {
                     problems.add(t.getClass().getName() + ": keys() must hold type, name, material and every required key,"
