@@ -56,7 +56,8 @@ public interface SurfaceType {
      * Its entry under {@code $defs} of {@code scenes/scene.schema.json} (JSON Schema 2020-12),
      * which {@code raylab release} merges into the starter's schema and the instructor's. The
      * default: an object with exactly {@link #keys()} (any value, {@code "type"} this type's)
-     * and {@link #requiredKeys()}; override it to describe and type each key.
+     * and {@link #requiredKeys()}; override it to describe and type each key, as the built-in
+     * types do (their entries in the framework's schema file are theirs: SceneSchemaTest).
      */
     default ObjectNode schema() {
         ObjectNode s = new com.fasterxml.jackson.databind.ObjectMapper().createObjectNode();

@@ -83,7 +83,19 @@ public final class SurfaceTypes {
      * unchanged when none is registered or all are in it already.
      */
     public static String schemaWithExtensions(String schemaText) throws java.io.IOException {
-        if (EXTENSIONS.isEmpty()) {
+        return schemaWith(EXTENSIONS.values(), schemaText);
+    }
+
+    /**
+     * The scene schema with each of {@code declared}' {@link SurfaceType#schema()} under
+     * {@code $defs} (replacing an entry that differs) and, if missing, among the surface types
+     * ({@code $defs/surface}: its {@code "type"} enum and an if/then case), appended in the given
+     * order; the text unchanged when every entry is there as declared. The built-in types'
+     * entries are declared by the types too: scenes/scene.schema.json is what this makes of the
+     * schema without them (SceneSchemaTest holds it).
+     */
+    public static String schemaWith(java.util.Collection<SurfaceType> declared, String schemaText) throws java.io.IOException {
+        if (declared.isEmpty()) {
             return schemaText;
         }
         com.fasterxml.jackson.databind.ObjectMapper json = new com.fasterxml.jackson.databind.ObjectMapper();
@@ -94,7 +106,7 @@ public final class SurfaceTypes {
                 .get("type").get("enum");
         com.fasterxml.jackson.databind.node.ArrayNode cases = (com.fasterxml.jackson.databind.node.ArrayNode) surface.get("allOf");
         boolean changed = false;
-        for (SurfaceType t : EXTENSIONS.values()) {
+        for (SurfaceType t : declared) {
             if (!t.schema().equals(defs.get(t.type()))) {
                 defs.set(t.type(), t.schema());
                 changed = true;
@@ -118,7 +130,9 @@ public final class SurfaceTypes {
         }
         List<String> all = new ArrayList<>();
         types.forEach(v -> all.add(v.asText()));
-        surface.put("description", "Surface: " + String.join(", ", all) + ".");
+        String last = all.remove(all.size() - 1);
+        surface.put("description", "Surface: " + (all.isEmpty() ? "" : String.join(", ", all) + " or ") + last + ".");
+        all.add(last);
         ((com.fasterxml.jackson.databind.node.ObjectNode) surface.get("properties").get("type"))
                 .put("description", "The surface type: one of " + String.join(", ", all) + ".");
         return json.writerWithDefaultPrettyPrinter().writeValueAsString(schema) + "\n";

@@ -157,4 +157,42 @@ class SceneSchemaTest {
             node.elements().forEachRemaining(n -> collectBrokenRefs(n, broken));
         }
     }
+
+    /**
+     * The built-in types' entries are declared by the types ({@link SurfaceType#schema()}):
+     * each entry of the file is its type's, and merging the types into the file changes nothing.
+     */
+    @Test
+    void builtInEntriesAreWhatTheTypesDeclare() throws IOException {
+        for (SurfaceType t : SurfaceTypes.BUILT_IN) {
+            assertEquals(t.schema(), definition(t.type()), () -> "$defs/" + t.type() + ": " + t.getClass().getName()
+                    + ".schema() (expected) vs scenes/scene.schema.json (actual)");
+        }
+        String text = java.nio.file.Files.readString(SCHEMA);
+        assertEquals(text, SurfaceTypes.schemaWith(SurfaceTypes.BUILT_IN, text),
+                "scenes/scene.schema.json merged with the built-in types must be unchanged");
+    }
+
+    /**
+     * The file's surface entries come from the types alone: with every built-in entry taken out
+     * ($defs, the "type" enum, the if/then cases), merging the built-in types gives the file back.
+     */
+    @Test
+    void builtInTypesAloneMakeTheSurfaceEntries() throws IOException {
+        ObjectMapper json = new ObjectMapper();
+        com.fasterxml.jackson.databind.node.ObjectNode without = schema.deepCopy();
+        com.fasterxml.jackson.databind.node.ObjectNode defs = (com.fasterxml.jackson.databind.node.ObjectNode) without.get("$defs");
+        com.fasterxml.jackson.databind.node.ObjectNode surface = (com.fasterxml.jackson.databind.node.ObjectNode) defs.get("surface");
+        for (SurfaceType t : SurfaceTypes.BUILT_IN) {
+            assertTrue(defs.remove(t.type()) != null, "scenes/scene.schema.json has no $defs/" + t.type());
+        }
+        ((com.fasterxml.jackson.databind.node.ArrayNode) surface.at("/properties/type/enum")).removeAll();
+        ((com.fasterxml.jackson.databind.node.ArrayNode) surface.get("allOf")).removeAll();
+        surface.put("description", "(rewritten)");
+        JsonNode made = json.readTree(SurfaceTypes.schemaWith(SurfaceTypes.BUILT_IN, json.writeValueAsString(without)));
+        assertEquals(schema, made, "scenes/scene.schema.json (expected) vs the schema without its surface entries"
+                + " merged with the built-in types (actual)");
+        assertEquals("[\"sphere\",\"box\",\"triangle\",\"mesh\"]", made.at("/$defs/surface/properties/type/enum").toString(),
+                "surface types in order");
+    }
 }

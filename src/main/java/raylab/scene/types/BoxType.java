@@ -42,6 +42,17 @@ public final class BoxType implements SurfaceType {
         return List.of("type", "min", "max", "material");
     }
 
+    /** Its entry under {@code $defs} of scenes/scene.schema.json: each key described and typed. */
+    @Override
+    public ObjectNode schema() {
+        return SchemaJson.entry(this, "An axis-aligned box between the corners min and max.", "An axis-aligned box.", """
+                {
+                  "min": {"description": "The corner with the smallest coordinates.", %1$s},
+                  "max": {"description": "The corner with the largest coordinates (at least min in every axis).", %1$s}
+                }
+                """.formatted(SchemaJson.POINT));
+    }
+
     @Override
     public Surface build(Fields f, Material m, String name) throws SceneException {
         Vec3 min = f.vec3("min");

@@ -37,6 +37,21 @@ public final class MeshType implements SurfaceType {
         return List.of("type", "file", "material");
     }
 
+    /** Its entry under {@code $defs} of scenes/scene.schema.json: each key described and typed. */
+    @Override
+    public ObjectNode schema() {
+        return SchemaJson.entry(this, "A triangle mesh read from a Wavefront OBJ file; each vertex v becomes"
+                + " v·scale + translate.", "A triangle mesh from an OBJ file.", """
+                {
+                  "file": {"description": "Path of the OBJ file, relative to the scene file's directory.", "type": "string",
+                           "minLength": 1},
+                  "scale": {"description": "Uniform scale factor (positive). Default: 1.", "type": "number",
+                            "exclusiveMinimum": 0, "default": 1},
+                  "translate": {"description": "Offset added after scaling. Default: [0, 0, 0].", %s}
+                }
+                """.formatted(SchemaJson.POINT));
+    }
+
     @Override
     public Surface build(Fields f, Material m, String name) throws SceneException {
         String rel = f.string("file");

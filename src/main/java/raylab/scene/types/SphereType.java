@@ -37,6 +37,17 @@ public final class SphereType implements SurfaceType {
         return List.of("type", "center", "radius", "material");
     }
 
+    /** Its entry under {@code $defs} of scenes/scene.schema.json: each key described and typed. */
+    @Override
+    public ObjectNode schema() {
+        return SchemaJson.entry(this, "A sphere with centre c and radius r.", "A sphere.", """
+                {
+                  "center": {"description": "The centre c.", %s},
+                  "radius": {"description": "The radius r (positive).", "type": "number", "exclusiveMinimum": 0}
+                }
+                """.formatted(SchemaJson.POINT));
+    }
+
     @Override
     public Surface build(Fields f, Material m, String name) throws SceneException {
         return new Sphere(f.vec3("center"), f.positive("radius"), m, name);

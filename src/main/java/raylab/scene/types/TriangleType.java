@@ -39,6 +39,18 @@ public final class TriangleType implements SurfaceType {
         return List.of("type", "vertices", "material");
     }
 
+    /** Its entry under {@code $defs} of scenes/scene.schema.json: each key described and typed. */
+    @Override
+    public ObjectNode schema() {
+        return SchemaJson.entry(this, "A triangle; its normal points to the side from which the vertices are seen"
+                + " counter-clockwise.", "A single triangle.", """
+                {
+                  "vertices": {"description": "The vertices a, b, c.", "type": "array", "minItems": 3, "maxItems": 3,
+                               "items": {%s}}
+                }
+                """.formatted(SchemaJson.POINT));
+    }
+
     @Override
     public Surface build(Fields f, Material m, String name) throws SceneException {
         int n = f.count("vertices");
