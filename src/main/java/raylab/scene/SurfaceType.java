@@ -116,7 +116,7 @@ public interface SurfaceType {
     }
 
     /**
-     * Whether a data case (grader/README.md, "Data cases") may have a surface of this type: true
+     * Whether a data case (the grader's README, "Data cases") may have a surface of this type: true
      * unless overridden (a mesh may not).
      */
     default boolean inDataCases() {

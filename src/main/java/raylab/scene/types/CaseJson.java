@@ -4,7 +4,7 @@ import com.fasterxml.jackson.databind.JsonNode;
 
 import raylab.math.Vec3;
 
-/** The values of a data case (grader/README.md, "Data cases"), as the built-in types read them. */
+/** The values of a data case (the grader's README, "Data cases"), as the built-in types read them. */
 public final class CaseJson {
     private CaseJson() {
     }
