@@ -83,6 +83,7 @@ final class ContractCheck {
         List<String> misses = new ArrayList<>();
         List<String> inTurn = new ArrayList<>();
         int broken = 0;
+        String firstBroken = null;
         java.util.List<String> files = null;
         for (Surface s : leaves) {
             IntersectionRecord before = new IntersectionRecord();
@@ -107,11 +108,16 @@ final class ContractCheck {
             boolean wrote = Double.compare(rec.t, before.t) != 0 || rec.point != before.point || rec.normal != before.normal
                     || rec.surface != before.surface;
             if (!returned && !wrote && s instanceof raylab.surface.Box b && plane.contains("0/0") && meets(b, ray, before)) {
-                // The 0/0 case first: this miss breaks a rule, whatever the probe over all t says.
+                // A missed box the ray meets along a face breaks a rule, whatever the probe over all t
+                // says; the 0/0 of the face's plane is named as the cause only on evidence: the same
+                // intersect hits the ray tilted off its d = 0 planes, into the box.
+                boolean zeroOverZero = hitsTiltedInward(b, ray);
                 inTurn.add("    \"" + s.name() + "\": miss" + flag("the ray meets this box (it runs along a face,"
-                        + " inside the closed box) but intersect missed it: a slab with d = 0 divides 0 by 0 (NaN) when p"
-                        + " is on its plane; decide such a slab without dividing (inside when min <= p <= max)") + plane);
+                        + " inside the closed box) but intersect missed it: " + (zeroOverZero ? ZERO_OVER_ZERO
+                                : notZeroOverZero(ray))) + plane);
                 answers.add(inTurn.get(inTurn.size() - 1));
+                firstBroken = firstBroken != null ? firstBroken : "\"" + s.name() + "\" is missed" + (zeroOverZero
+                        ? " through 0/0: a slab with d = 0 and p on its plane" : ", and not through the 0/0 of its face");
                 broken++;
                 continue;
             }
@@ -159,8 +165,10 @@ final class ContractCheck {
             inTurn.add(line.append(plane).toString());
             answers.add(inTurn.get(inTurn.size() - 1));
         }
+        // A missed box's cause is said here, before any line of the surfaces asked in turn.
         out.println("  surfaces asked in turn, as a group does (" + leaves.size() + ")" + (broken == 0
-                ? ": every rule of intersect holds" : ": " + broken + " broke a rule of intersect"));
+                ? ": every rule of intersect holds" : ": " + broken + " broke a rule of intersect"
+                        + (firstBroken == null ? "" : " (" + firstBroken + ")")));
         if (inTurn.size() <= MAX_LINES) {
             inTurn.forEach(out::println); // in the order asked
             return;
@@ -229,6 +237,43 @@ final class ContractCheck {
             t1 = Math.min(t1, Math.max(a, c));
         }
         return t0 <= t1;
+    }
+
+    /** Why a box the ray meets along a face was missed, when its d = 0 slabs alone break it. */
+    static final String ZERO_OVER_ZERO = "a slab with d = 0 divides 0 by 0 (NaN) when p is on its plane; decide such"
+            + " a slab without dividing (inside when min <= p <= max)";
+
+    /**
+     * Why such a box was missed when tilting the ray off its d = 0 planes does not help: not the
+     * 0/0 of a face's plane; and, for a negative component of d, the slab's entry and exit.
+     */
+    static String notZeroOverZero(Ray ray) {
+        String negative = ray.d.x < 0 ? "d.x" : ray.d.y < 0 ? "d.y" : ray.d.z < 0 ? "d.z" : null;
+        return "it misses the ray tilted off that face into the box too, so the d = 0 slab (0/0) is not the cause;"
+                + (negative == null ? " look at the slabs with d != 0"
+                        : " " + negative + " < 0 here: a slab is entered at its max plane when d is negative"
+                                + " (is t_min > t_max left unswapped?)");
+    }
+
+    /**
+     * Whether the box's intersect hits the ray with every zero component of d tilted by a
+     * thousandth of ‖d‖, toward the inside of the box where p is on a face's plane: evidence that
+     * the zero components alone (the 0/0 of a slab) made it miss.
+     */
+    static boolean hitsTiltedInward(raylab.surface.Box b, Ray ray) {
+        double tilt = 1e-3 * ray.d.length();
+        double[] d = {ray.d.x, ray.d.y, ray.d.z};
+        for (int i = 0; i < 3; i++) {
+            if (d[i] == 0) {
+                boolean onMax = ray.p.get(i) == b.max.get(i) && b.max.get(i) != b.min.get(i);
+                d[i] = onMax ? -tilt : tilt;
+            }
+        }
+        try {
+            return b.intersect(new IntersectionRecord(), new Ray(ray.p, new Vec3(d[0], d[1], d[2]), ray.tMin, ray.tMax));
+        } catch (RuntimeException | StackOverflowError e) {
+            return false;
+        }
     }
 
     /** "; the ray lies in the plane x = 1 of a face (a slab with d.x = 0)" and the like, or "". */

@@ -74,32 +74,79 @@ class TraceSurfacesTest {
         assertTrue(text.contains("  no hit: background rgb(0, 0, 0)"), text);
     }
 
-    /**
-     * A box lost to 0/0 (bugs3: the lecture's slabs without a case for d = 0) at the pixel whose
-     * ray runs along its face: the 0/0 case is said first, as a broken rule, never "every rule of
-     * intersect holds" nor "the line of the ray does not meet it". The reference Box at the same
-     * pixel (the test above) gets neither.
-     */
-    @Test
-    void aBoxLostToZeroOverZeroIsExplainedFirst() throws Exception {
+    /** The output of {@code raylab trace} at the middle pixel with the Box.java of a bundled submission. */
+    String traceWithBox(String submission) throws Exception {
         Path scene = dir.resolve("planes.json");
         Files.writeString(scene, SCENE);
-        Path bug = Path.of("src/test/resources/submissions/bugs3/Box.java");
+        Path bug = Path.of("src/test/resources/submissions", submission, "Box.java");
+        Path build = dir.resolve(submission);
         raylab.course.JavaBuild.Result r = raylab.course.MilestoneBuild.compileOverlay(java.util.Map.of(
-                "raylab/surface/Box.java", Files.readString(bug)), dir.resolve("src"),
-                raylab.course.JavaBuild.ownClassPath(), dir.resolve("classes"));
+                "raylab/surface/Box.java", Files.readString(bug)), build.resolve("src"),
+                raylab.course.JavaBuild.ownClassPath(), build.resolve("classes"));
         assertTrue(r.success(), r.errors().toString());
         Process p = new ProcessBuilder(Path.of(System.getProperty("java.home"), "bin", "java").toString(), "-cp",
-                dir.resolve("classes") + java.io.File.pathSeparator + System.getProperty("java.class.path"),
+                build.resolve("classes") + java.io.File.pathSeparator + System.getProperty("java.class.path"),
                 "raylab.cli.Main", "trace", scene.toString(), "--pixel", "10", "10").redirectErrorStream(true).start();
         String text = new String(p.getInputStream().readAllBytes(), java.nio.charset.StandardCharsets.UTF_8);
         assertEquals(0, p.waitFor(), text);
+        return text;
+    }
+
+    static final String BOX = "    \"face in the ray's plane\": ";
+    static final String ZERO_OVER_ZERO = "a slab with d = 0 divides 0 by 0 (NaN)";
+
+    /** The index of the first line that starts with prefix, or a failure naming it. */
+    static int lineStarting(List<String> lines, String prefix) {
+        for (int i = 0; i < lines.size(); i++) {
+            if (lines.get(i).startsWith(prefix)) {
+                return i;
+            }
+        }
+        throw new AssertionError("expected a line starting with '" + prefix + "', got:\n" + String.join("\n", lines));
+    }
+
+    /**
+     * A box lost to 0/0 (bugs3: the lecture's slabs without a case for d = 0) at the pixel whose
+     * ray runs along its face: the 0/0 case is said first (on the header line, before any
+     * surface's miss line), as a broken rule, never "every rule of intersect holds" nor "the line
+     * of the ray does not meet it". The reference Box at the same pixel (the first test) gets
+     * neither.
+     */
+    @Test
+    void aBoxLostToZeroOverZeroIsExplainedFirst() throws Exception {
+        String text = traceWithBox("bugs3");
         List<String> lines = text.lines().toList();
-        assertTrue(lines.contains("  surfaces asked in turn, as a group does (4): 1 broke a rule of intersect"), text);
-        String box = lines.stream().filter(l -> l.startsWith("    \"face in the ray's plane\": ")).findFirst().orElseThrow();
-        assertTrue(box.startsWith("    \"face in the ray's plane\": miss   "), box);
+        assertTrue(!text.contains("every rule of intersect holds"), text);
+        int header = lineStarting(lines, "  surfaces asked in turn, as a group does (4): 1 broke a rule of intersect");
+        assertEquals("  surfaces asked in turn, as a group does (4): 1 broke a rule of intersect (\"face in the ray's"
+                + " plane\" is missed through 0/0: a slab with d = 0 and p on its plane)", lines.get(header), text);
+        int firstMiss = lineStarting(lines, "    \"behind camera\": miss");
+        assertTrue(header < firstMiss, "the 0/0 case must be said before the first miss line:\n" + text);
+        String box = lines.get(lineStarting(lines, BOX));
+        assertTrue(box.startsWith(BOX + "miss   "), box);
         assertTrue(box.contains("the ray meets this box (it runs along a face, inside the closed box) but intersect"
-                + " missed it: a slab with d = 0 divides 0 by 0 (NaN)"), box);
+                + " missed it: " + ZERO_OVER_ZERO), box);
+        assertTrue(!box.contains("the line of the ray does not meet it"), box);
+    }
+
+    /**
+     * The 0/0 explanation only on evidence: bugs1's Box (slabs that never swap t_min and t_max
+     * when d &lt; 0) misses the same box at the same pixel, but it misses it as well with the ray
+     * tilted off the face's plane, so the cause is not the 0/0: trace says the rule is broken and
+     * that d = 0 is not the cause, never that a slab divides 0 by 0.
+     */
+    @Test
+    void aBoxMissedForAnotherReasonIsNotBlamedOnZeroOverZero() throws Exception {
+        String text = traceWithBox("bugs1");
+        List<String> lines = text.lines().toList();
+        assertTrue(!text.contains(ZERO_OVER_ZERO), "bugs1 must not get the 0/0 explanation:\n" + text);
+        assertTrue(!text.contains("through 0/0"), "bugs1 must not get the 0/0 explanation:\n" + text);
+        assertEquals("  surfaces asked in turn, as a group does (4): 1 broke a rule of intersect (\"face in the ray's"
+                + " plane\" is missed, and not through the 0/0 of its face)",
+                lines.get(lineStarting(lines, "  surfaces asked in turn")), text);
+        String box = lines.get(lineStarting(lines, BOX));
+        assertTrue(box.contains("so the d = 0 slab (0/0) is not the cause; d.z < 0 here: a slab is entered at its max"
+                + " plane when d is negative"), box);
         assertTrue(!box.contains("the line of the ray does not meet it"), box);
     }
 }
