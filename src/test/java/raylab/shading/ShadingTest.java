@@ -20,7 +20,8 @@ import raylab.testing.Check;
  * Milestone lambert: the lecture's shade() loop, {@link Shading#shade}. Run with
  * {@code ./mvnw test -Dgroups=lambert}.
  *
- * <p>Set-up: x = (0, 0, 0) on a floor with n = (0, 1, 0), viewer straight above (v = n). A light
+ * <p>Set-up: x = (0, 0, 0) on a floor with n = (0, 1, 0), viewer straight above (v = n) but in one
+ * check (a grazing viewer, where v·l and n·l differ in sign). A light
  * at (0, 2, 0) has l = n, n·l = 1; one at (3, 4, 0) has l = (0.6, 0.8, 0), n·l = 0.8; one at
  * (0, −2, 0) is below the floor, n·l = −1.
  */
@@ -107,6 +108,14 @@ class ShadingTest {
         List<String> asked = new ArrayList<>();
         Check.color("shade() with a light below the floor", KA.times(IA).plus(KD.times(I1)),
                 shade(MATTE, Set.of(), asked, BELOW, ABOVE), "skip lights with n·l <= 0");
+        // The other way round: in front is the normal's side, not the viewer's. The viewer at a
+        // grazing v = (0.8, 0.6, 0), a light at (−4, 3, 0): l = (−0.8, 0.6, 0), n·l = 0.6 > 0 but
+        // v·l = −0.28.
+        PointLight across = new PointLight(new Vec3(-4, 3, 0), I1, true, "across from the viewer");
+        Check.color("shade() with the viewer at v = (0.8, 0.6, 0) and a light at (−4, 3, 0), n·l = 0.6",
+                KA.times(IA).plus(KD.times(I1).times(0.6)),
+                Shading.shade(ShadingPoint.plain(X, N, new Vec3(0.8, 0.6, 0), MATTE, IA, light -> true), List.of(across)),
+                "a light is in front when n·l > 0, on the normal's side, wherever the viewer v is");
         // Asking at.visible for the light below is a cost (a shadow ray), not a wrong result:
         // a zero-point note, never a failure.
         Check.skippableShadowRays((int) asked.stream().filter(n -> n.equals("below the floor")).count());
@@ -135,6 +144,11 @@ class ShadingTest {
         Color c = shade(new Glossy(), Set.of(), new ArrayList<>(), BELOW);
         Check.color("shade() of a material with a specular term, light below the floor (n·l < 0)", KA.times(IA), c,
                 "a light with n·l <= 0 adds no term at all: skip it before adding diffuse and specular");
+        // On the horizon, n·l = 0 exactly: not in front either (Blinn-Phong's n·h is still 0.71 there).
+        PointLight horizon = new PointLight(new Vec3(3, 0, 0), I1, true, "on the horizon");
+        Check.color("shade() of a material with a specular term, light on the horizon (n·l = 0)", KA.times(IA),
+                shade(new Glossy(), Set.of(), new ArrayList<>(), horizon),
+                "in front means n·l > 0: a light with n·l = 0 adds no highlight either");
     }
 
     @Test
@@ -156,6 +170,9 @@ class ShadingTest {
         assertTrue(c.isFinite(), "NaN or infinite radiance for a light exactly at x: " + c);
         Check.color("shade() with a light exactly at x", KA.times(IA), c,
                 "at.toLight(light) is (0, 0, 0) there, so n·l = 0: the light is not in front");
+        Check.color("shade() of a material with a specular term, a light exactly at x", KA.times(IA),
+                shade(new Glossy(), Set.of(), asked, atX),
+                "at.toLight(light) is (0, 0, 0) there, so n·l = 0: the light is not in front, and adds no highlight");
         Check.skippableShadowRays(asked.size());
     }
 }
