@@ -109,7 +109,7 @@ class ShadeLoopMutantsTest {
 
     /** Where the ambient term ka·Ia goes. */
     enum Ambient {
-        ONCE, NEVER, PER_LIGHT, AGAIN_PER_LIT_LIGHT, ONLY_WHEN_NOTHING_LIT, AFTER_THE_LOOP
+        ONCE, NEVER, PER_LIGHT, WITH_EACH_LIT_LIGHT, ONLY_WHEN_NOTHING_LIT, AFTER_THE_LOOP
     }
 
     /** How a lit light's terms reach the result. */
@@ -127,6 +127,18 @@ class ShadeLoopMutantsTest {
             Loop loop, boolean firstLightsDirection, boolean firstLightsShadow, boolean firstLightsTerms) {
         static final Mutant REFERENCE = new Mutant(Facing.N_DOT_L_POSITIVE, Direction.TO_LIGHT, Gate.FRONT_AND_VISIBLE,
                 Gate.FRONT_AND_VISIBLE, Ambient.ONCE, Accumulate.ADD, Loop.EVERY_LIGHT, false, false, false);
+
+        /** The choices' positions in {@link #values()}. */
+        static final int FACING = 0, DIRECTION = 1, DIFFUSE = 2, SPECULAR = 3, AMBIENT = 4, ACCUMULATE = 5, LOOP = 6,
+                FIRST_LIGHTS_DIRECTION = 7, FIRST_LIGHTS_SHADOW = 8, FIRST_LIGHTS_TERMS = 9;
+
+        /** This mutant with one choice changed. */
+        Mutant with(int choice, Object value) {
+            Object[] v = values();
+            v[choice] = value;
+            return new Mutant((Facing) v[0], (Direction) v[1], (Gate) v[2], (Gate) v[3], (Ambient) v[4], (Accumulate) v[5],
+                    (Loop) v[6], (Boolean) v[7], (Boolean) v[8], (Boolean) v[9]);
+        }
 
         /** The choices that differ from the reference, e.g. "specular=FRONT, loop=FIRST_ONLY". */
         String changes() {
@@ -177,7 +189,7 @@ class ShadeLoopMutantsTest {
                     .append(", l));\n        lit = true;\n    }\n");
             b.append("    if (").append(specular.code).append(") {\n        terms = terms.plus(at.specular(").append(termsOf)
                     .append(", l));\n        lit = true;\n    }\n");
-            if (ambient == Ambient.AGAIN_PER_LIT_LIGHT) {
+            if (ambient == Ambient.WITH_EACH_LIT_LIGHT) {
                 b.append("    if (lit) {\n        terms = terms.plus(at.ambient());\n    }\n");
             }
             b.append("    anyLit |= lit;\n");
@@ -222,35 +234,17 @@ class ShadeLoopMutantsTest {
         Set<Mutant> all = new LinkedHashSet<>();
         Mutant ref = Mutant.REFERENCE;
         all.add(ref);
-        for (Facing f : Facing.values()) {
-            all.add(new Mutant(f, ref.direction, ref.diffuse, ref.specular, ref.ambient, ref.accumulate, ref.loop, false, false,
-                    false));
-        }
-        for (Direction d : Direction.values()) {
-            all.add(new Mutant(ref.facing, d, ref.diffuse, ref.specular, ref.ambient, ref.accumulate, ref.loop, false, false,
-                    false));
+        Object[][] choices = {Facing.values(), Direction.values(), Gate.values(), Gate.values(), Ambient.values(),
+            Accumulate.values(), Loop.values(), {true}, {true}, {true}};
+        for (int c = 0; c < choices.length; c++) {
+            for (Object value : choices[c]) {
+                all.add(ref.with(c, value));
+            }
         }
         for (Gate dg : Gate.values()) {
             for (Gate sg : Gate.values()) {
-                all.add(new Mutant(ref.facing, ref.direction, dg, sg, ref.ambient, ref.accumulate, ref.loop, false, false,
-                        false));
+                all.add(ref.with(Mutant.DIFFUSE, dg).with(Mutant.SPECULAR, sg));
             }
-        }
-        for (Ambient a : Ambient.values()) {
-            all.add(new Mutant(ref.facing, ref.direction, ref.diffuse, ref.specular, a, ref.accumulate, ref.loop, false, false,
-                    false));
-        }
-        for (Accumulate a : Accumulate.values()) {
-            all.add(new Mutant(ref.facing, ref.direction, ref.diffuse, ref.specular, ref.ambient, a, ref.loop, false, false,
-                    false));
-        }
-        for (Loop l : Loop.values()) {
-            all.add(new Mutant(ref.facing, ref.direction, ref.diffuse, ref.specular, ref.ambient, ref.accumulate, l, false,
-                    false, false));
-        }
-        for (int k = 0; k < 3; k++) {
-            all.add(new Mutant(ref.facing, ref.direction, ref.diffuse, ref.specular, ref.ambient, ref.accumulate, ref.loop,
-                    k == 0, k == 1, k == 2));
         }
         SplittableRandom r = new SplittableRandom(seed);
         for (int i = 0; i < RANDOM; i++) {
@@ -461,20 +455,16 @@ class ShadeLoopMutantsTest {
         // The mistakes of the corpus, as choices: each differs from the reference on some input.
         Map<String, Mutant> corpus = new LinkedHashMap<>();
         Mutant r = Mutant.REFERENCE;
-        corpus.put("bugs2: the ambient term once per light", new Mutant(r.facing, r.direction, r.diffuse, r.specular,
-                Ambient.PER_LIGHT, r.accumulate, r.loop, false, false, false));
-        corpus.put("lambert-shadow-ignored", new Mutant(r.facing, r.direction, Gate.FRONT, Gate.FRONT, r.ambient,
-                r.accumulate, r.loop, false, false, false));
-        corpus.put("lambert-shadow-gates-diffuse-only", new Mutant(r.facing, r.direction, r.diffuse, Gate.FRONT, r.ambient,
-                r.accumulate, r.loop, false, false, false));
+        corpus.put("bugs2: the ambient term once per light", r.with(Mutant.AMBIENT, Ambient.PER_LIGHT));
+        corpus.put("lambert-shadow-ignored", r.with(Mutant.DIFFUSE, Gate.FRONT).with(Mutant.SPECULAR, Gate.FRONT));
+        corpus.put("lambert-shadow-gates-diffuse-only", r.with(Mutant.SPECULAR, Gate.FRONT));
         for (Map.Entry<String, Mutant> e : corpus.entrySet()) {
             int k = mutants.indexOf(e.getValue());
             assertTrue(k >= 0, e.getKey() + " is not among the generated mutants");
             assertNotNull(difference(k + 1), e.getKey() + " (" + e.getValue().changes() + ") was found equivalent");
         }
         // A diffuse term kept for a light behind the surface adds max(0, n·l) = 0: equivalent.
-        Mutant behind = new Mutant(r.facing, r.direction, Gate.VISIBLE, r.specular, r.ambient, r.accumulate, r.loop, false,
-                false, false);
+        Mutant behind = r.with(Mutant.DIFFUSE, Gate.VISIBLE);
         assertNull(difference(mutants.indexOf(behind) + 1), "the diffuse term of a light behind is 0");
     }
 
@@ -510,6 +500,99 @@ class ShadeLoopMutantsTest {
             others.add(l);
             assertEquals(e.getValue(), l.visibleFailures().keySet(), e.getKey() + ": the visible tests of lambert it fails");
         }
+    }
+
+    static final String ONE_LIGHT = "one light above: ka·Ia + kd·I·(n·l)";
+    static final String NO_HIGHLIGHT_BEHIND = "a light behind the surface gives no highlight either";
+    static final String AT_THE_POINT = "a light exactly at the point adds nothing, and no NaN";
+    static final String EQUIVALENT = "equivalent";
+
+    /** One cell of the grid: a term, a condition, a mistake in that pair, and the visible test that shows it. */
+    record Cell(String term, String condition, String mistake, Mutant mutant, String shownBy) {
+    }
+
+    /**
+     * The grid of grader/README.md ("The shade loop: where each mistake shows"), row by row: the
+     * terms (ambient; each light's diffuse; each light's specular) under each condition that drops
+     * or keeps them (a blocked light; a light behind the surface, n·l &lt; 0; a light on the
+     * horizon or exactly at x, n·l = 0; a viewer off the normal, where v·l and n·l differ; several
+     * lights), each mistake a mutant of the generator.
+     */
+    static List<Cell> grid() {
+        Mutant r = Mutant.REFERENCE;
+        return List.of(
+                new Cell("ambient", "no light", "left out", r.with(Mutant.AMBIENT, Ambient.NEVER), NO_LIGHTS),
+                new Cell("ambient", "a lit light", "only when no light is lit", r.with(Mutant.AMBIENT, Ambient.ONLY_WHEN_NOTHING_LIT),
+                        ONE_LIGHT),
+                new Cell("ambient", "blocked", "only with a lit light (lost when every light is blocked)",
+                        r.with(Mutant.AMBIENT, Ambient.WITH_EACH_LIT_LIGHT), BLOCKED),
+                new Cell("ambient", "behind (n·l < 0)", "only with a lit light (lost when the light is behind)",
+                        r.with(Mutant.AMBIENT, Ambient.WITH_EACH_LIT_LIGHT), NO_HIGHLIGHT_BEHIND),
+                new Cell("ambient", "several lights", "once per light", r.with(Mutant.AMBIENT, Ambient.PER_LIGHT), TWO_LIGHTS),
+                new Cell("ambient", "several lights", "lost when a lit light overwrites the result",
+                        r.with(Mutant.ACCUMULATE, Accumulate.OVERWRITE), TWO_LIGHTS),
+                new Cell("diffuse", "in front and visible", "left out", r.with(Mutant.DIFFUSE, Gate.NEVER), ONE_LIGHT),
+                new Cell("diffuse", "blocked", "kept", r.with(Mutant.DIFFUSE, Gate.FRONT), BLOCKED),
+                new Cell("diffuse", "blocked", "added only when blocked", r.with(Mutant.DIFFUSE, Gate.FRONT_AND_BLOCKED), ONE_LIGHT),
+                new Cell("diffuse", "behind (n·l < 0)", "kept (kd·I·max(0, n·l) = 0: no other result)", r.with(Mutant.DIFFUSE, Gate.VISIBLE),
+                        EQUIVALENT),
+                new Cell("diffuse", "behind (n·l < 0)", "in front taken for behind (n·l < 0 as the test)",
+                        r.with(Mutant.FACING, Facing.INVERTED), ONE_LIGHT),
+                new Cell("diffuse", "viewer off the normal", "in front decided by v·l instead of n·l",
+                        r.with(Mutant.FACING, Facing.VIEWER_SIDE), BEHIND),
+                new Cell("diffuse", "several lights", "the last lit light overwrites the others",
+                        r.with(Mutant.ACCUMULATE, Accumulate.OVERWRITE_KEEPING_AMBIENT), TWO_LIGHTS),
+                new Cell("diffuse", "several lights", "the first light only", r.with(Mutant.LOOP, Loop.FIRST_ONLY), TWO_LIGHTS),
+                new Cell("diffuse", "several lights", "the first light skipped", r.with(Mutant.LOOP, Loop.ALL_BUT_THE_FIRST), ONE_LIGHT),
+                new Cell("diffuse", "several lights", "the loop stops at a skipped light (break for continue)",
+                        r.with(Mutant.LOOP, Loop.BREAK_AT_A_SKIPPED_LIGHT), BEHIND),
+                new Cell("diffuse", "several lights", "the first light's terms for every light",
+                        r.with(Mutant.FIRST_LIGHTS_TERMS, true), TWO_LIGHTS),
+                new Cell("diffuse", "several lights", "the first light's direction for every light",
+                        r.with(Mutant.FIRST_LIGHTS_DIRECTION, true), TWO_LIGHTS),
+                new Cell("diffuse", "several lights", "the first light's shadow answer for every light",
+                        r.with(Mutant.FIRST_LIGHTS_SHADOW, true), BLOCKED),
+                new Cell("specular", "in front and visible", "left out", r.with(Mutant.SPECULAR, Gate.NEVER), BOTH_TERMS),
+                new Cell("specular", "blocked", "kept (the shadow test around the diffuse term only)",
+                        r.with(Mutant.SPECULAR, Gate.FRONT), BLOCKED),
+                new Cell("specular", "behind (n·l < 0)", "kept", r.with(Mutant.SPECULAR, Gate.VISIBLE), NO_HIGHLIGHT_BEHIND),
+                new Cell("specular", "on the horizon or at x (n·l = 0)", "kept (n·l >= 0 as the test)",
+                        r.with(Mutant.FACING, Facing.N_DOT_L_NOT_NEGATIVE), NO_HIGHLIGHT_BEHIND),
+                new Cell("specular", "on the horizon or at x (n·l = 0)", "kept (n·l >= 0 as the test)",
+                        r.with(Mutant.FACING, Facing.N_DOT_L_NOT_NEGATIVE), AT_THE_POINT),
+                new Cell("specular", "behind (n·l < 0)", "kept for a light on either side (n·l != 0 as the test)",
+                        r.with(Mutant.FACING, Facing.TWO_SIDED), NO_HIGHLIGHT_BEHIND),
+                new Cell("specular", "viewer off the normal", "in front decided by v·l instead of n·l",
+                        r.with(Mutant.FACING, Facing.VIEWER_SIDE), BEHIND),
+                new Cell("specular", "several lights", "the last lit light overwrites the others",
+                        r.with(Mutant.ACCUMULATE, Accumulate.OVERWRITE_KEEPING_AMBIENT), BOTH_TERMS),
+                new Cell("specular", "several lights", "the first light's terms for every light",
+                        r.with(Mutant.FIRST_LIGHTS_TERMS, true), BOTH_TERMS));
+    }
+
+    @Test
+    void everyCellOfTheGridIsShownByItsVisibleTest() throws Exception {
+        StringBuilder wrong = new StringBuilder();
+        for (Cell c : grid()) {
+            int k = mutants.indexOf(c.mutant());
+            assertTrue(k > 0, c + ": not among the generated mutants");
+            String diff = difference(k + 1);
+            String got;
+            if (c.shownBy().equals(EQUIVALENT)) {
+                got = diff == null ? EQUIVALENT : "differs at " + diff;
+            } else {
+                select(k + 1);
+                Set<String> failed = visibleFailures().keySet();
+                got = failed.contains(c.shownBy()) ? c.shownBy() : "failed only " + failed;
+            }
+            System.out.printf(Locale.ROOT, "%-8s | %-34s | %-60s | %s%n", c.term(), c.condition(), c.mistake(), got);
+            if (!got.equals(c.shownBy())) {
+                wrong.append("\n  ").append(c.term()).append(" / ").append(c.condition()).append(" / ").append(c.mistake())
+                        .append(" [").append(c.mutant().changes()).append("]: expected ").append(c.shownBy())
+                        .append(", got ").append(got).append("\n").append(c.mutant().body());
+            }
+        }
+        assertTrue(wrong.length() == 0, "cells of the grid not shown by their visible test:" + wrong);
     }
 
     @Test
