@@ -226,6 +226,9 @@ class NoSilentLossTest {
         String hint = "0/0 = NaN";
         notShown("bugs1/Box.java", test, hint); // never swaps t_min and t_max when d < 0
         shown("bugs1/Box.java", test, "swap t_min and t_max");
+        // In the same test, for a box that misses every ray with a zero direction component:
+        shown("mistakes/box-zero-direction-misses/Box.java", test, hint);
+        notShown("mistakes/box-zero-direction-misses/Box.java", test, "swap t_min and t_max");
         assertTrue(visibleOutput("bugs3/Box.java").contains(hint), visibleOutput("bugs3/Box.java")); // no d = 0 case
     }
 }
