@@ -605,7 +605,7 @@ class ShadeLoopMutantsTest {
             Mutant m = mutants.get(k);
             String diff = difference(k + 1);
             if (diff == null) {
-                equivalent.add(m.changes());
+                equivalent.add("[" + m.changes() + "]");
                 continue;
             }
             observable++;
@@ -628,7 +628,7 @@ class ShadeLoopMutantsTest {
             }
         }
         System.out.println("seed " + SEED + ": " + (mutants.size() - 1) + " mutants, " + observable + " compute something"
-                + " else, " + equivalent.size() + " equivalent: " + equivalent);
+                + " else, " + equivalent.size() + " equivalent: " + String.join(" ", equivalent));
         caughtBy.forEach((n, c) -> System.out.printf(Locale.ROOT, "  %3d caught by %s%n", c, n));
         assertTrue(survivors.isEmpty(), "seed " + SEED + " (-Draylab.mutants.seed=" + SEED + "): " + survivors.size()
                 + " mutant(s) of the shade loop pass every visible test and scene of lambert:" + String.join("", survivors));
