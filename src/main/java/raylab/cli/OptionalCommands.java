@@ -15,8 +15,12 @@ final class OptionalCommands {
     }
 
     static void addAll(CommandLine cl) {
-        Iterator<OptionalCommand> it = ServiceLoader.load(OptionalCommand.class, OptionalCommand.class.getClassLoader())
-                .iterator();
+        addAll(cl, OptionalCommand.class.getClassLoader());
+    }
+
+    /** As {@link #addAll(CommandLine)}, with the services files and providers {@code loader} finds. */
+    static void addAll(CommandLine cl, ClassLoader loader) {
+        Iterator<OptionalCommand> it = ServiceLoader.load(OptionalCommand.class, loader).iterator();
         while (true) {
             try {
                 if (!it.hasNext()) {
