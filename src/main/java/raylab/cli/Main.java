@@ -75,9 +75,7 @@ public final class Main implements Runnable {
                     + ex.getCommandLine().getCommandSpec().qualifiedName() + " --help)");
             return BAD_INPUT;
         });
-        for (String extra : OptionalCommands.NAMES) {
-            OptionalCommands.add(cl, extra);
-        }
+        OptionalCommands.addAll(cl);
         return cl;
     }
 

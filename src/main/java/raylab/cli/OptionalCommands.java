@@ -1,26 +1,35 @@
 package raylab.cli;
 
+import java.util.Iterator;
+import java.util.ServiceConfigurationError;
+import java.util.ServiceLoader;
+
 import picocli.CommandLine;
 
 /**
- * Commands that exist only in the instructor's tree (the student release leaves their classes
- * out). They are looked up by name, so the command line works in both trees.
+ * Adds the {@link OptionalCommand}s this build provides (the instructor's tree has them, the
+ * student release none) to the command line, in the order of their services file.
  */
 final class OptionalCommands {
-    static final String[] NAMES = {"raylab.course.release.ReleaseCommand", "raylab.course.release.AssignmentCommand", "raylab.grade.GradeCommand",
-        "raylab.grade.ReferenceCommand", "raylab.grade.VariantCommand", "raylab.grade.BundleCommand",
-        "raylab.grade.SelfCheckCommand",
-        "raylab.grade.platform.GradeAllCommand", "raylab.study.StudyCommand"};
-
     private OptionalCommands() {
     }
 
-    static void add(CommandLine cl, String className) {
-        try {
-            Object command = Class.forName(className).getDeclaredConstructor().newInstance();
-            cl.addSubcommand(command);
-        } catch (ReflectiveOperationException | LinkageError absent) {
-            // Not in this tree (for example the student release): the command is simply missing.
+    static void addAll(CommandLine cl) {
+        addAll(cl, OptionalCommand.class.getClassLoader());
+    }
+
+    /** As {@link #addAll(CommandLine)}, with the services files and providers {@code loader} finds. */
+    static void addAll(CommandLine cl, ClassLoader loader) {
+        Iterator<OptionalCommand> it = ServiceLoader.load(OptionalCommand.class, loader).iterator();
+        while (true) {
+            try {
+                if (!it.hasNext()) {
+                    return;
+                }
+                cl.addSubcommand(it.next());
+            } catch (ServiceConfigurationError absent) {
+                // A listed class this build lacks or cannot make: that command is simply missing.
+            }
         }
     }
 }

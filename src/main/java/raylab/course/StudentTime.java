@@ -1,23 +1,27 @@
 package raylab.course;
 
 import java.util.Map;
+import java.util.Optional;
 import java.util.concurrent.ConcurrentHashMap;
 
 /**
  * A test's time limit through the process boundary, measured in the student's own time: the
  * CPU time of the student process during the test, or the wall time of its calls less the time
  * they waited for a CPU or for the grader's answers, whichever is more
- * ({@code raylab.boundary.StudentProcess#studentTimeNanos}). The student process's watchdog
- * stops a call at its own budget and at the test's limit ({@code StudentProcess#startTest});
+ * ({@link BoundaryHooks#studentNanos}, {@link BoundaryHooks#studentCpuNanos}). The student process's watchdog
+ * stops a call at its own budget and at the test's limit ({@link BoundaryHooks#startTest});
  * JUnit's clock runs on wall time and is only a guard ({@link #guardSeconds}); when it fires,
  * this says whose time it was.
  */
 final class StudentTime {
     private final int limitSeconds;
+    /** The student process's clocks; empty: no student process (nothing to limit, times 0). */
+    private final Optional<BoundaryHooks> boundary;
     private final Map<String, long[]> atStart = new ConcurrentHashMap<>();
 
-    StudentTime(int limitSeconds) {
+    StudentTime(int limitSeconds, Optional<BoundaryHooks> boundary) {
         this.limitSeconds = limitSeconds;
+        this.boundary = boundary;
     }
 
     /** JUnit's wall-clock guard for a limit of {@code seconds} of the student's time. */
@@ -29,9 +33,8 @@ final class StudentTime {
     void start(String test) {
         atStart.put(test, now());
         try {
-            Class.forName("raylab.boundary.Remote").getMethod("startTest", long.class).invoke(null,
-                    limitSeconds * 1_000_000_000L);
-        } catch (ReflectiveOperationException | RuntimeException | LinkageError e) {
+            boundary.ifPresent(b -> b.startTest(limitSeconds * 1_000_000_000L));
+        } catch (RuntimeException | LinkageError e) {
             // no student process: nothing to limit
         }
     }
@@ -54,12 +57,10 @@ final class StudentTime {
                 + " (not the student's code)";
     }
 
-    private static long[] now() {
+    private long[] now() {
         try {
-            Class<?> remote = Class.forName("raylab.boundary.Remote");
-            return new long[] {(long) remote.getMethod("studentNanos").invoke(null),
-                (long) remote.getMethod("studentCpuNanos").invoke(null)};
-        } catch (ReflectiveOperationException | RuntimeException | LinkageError e) {
+            return boundary.map(b -> new long[] {b.studentNanos(), b.studentCpuNanos()}).orElseGet(() -> new long[2]);
+        } catch (RuntimeException | LinkageError e) {
             return new long[2];
         }
     }

@@ -45,10 +45,10 @@ import com.fasterxml.jackson.databind.ObjectMapper;
  * {@code --class NAME} (repeatable), {@code --timeout S} (per test), {@code --output-cap BYTES},
  * {@code --list} (report the discovered tests without running them), {@code --then-boundary FILE}
  * (in the grader's process: the classes named after it run after the ones before it, each group
- * to its end, with a new student process described by FILE; see {@code raylab.boundary.Remote}),
+ * to its end, with a new student process described by FILE; see {@link BoundaryHooks}),
  * {@code --then-render FILE ARGS SECONDS} (in the grader's process, after every test has been
  * reported: the scenes listed in the file ARGS, one line each of SCENE.json, OUT.png and NAME,
- * rendered by {@code raylab.boundary.TrustedRender} with a new student process described by
+ * rendered by the {@link BoundaryHooks} with a new student process described by
  * FILE, stopped after SECONDS).
  */
 public final class TestMain {
@@ -101,10 +101,11 @@ public final class TestMain {
             }
         }
         // In the grader's process: start the student process before the first test's clock runs.
+        java.util.Optional<BoundaryHooks> boundary = BoundaryHooks.find();
         if (System.getProperty("raylab.boundary") != null && !list) {
             try {
-                Class.forName("raylab.boundary.Remote").getMethod("warmUp").invoke(null);
-            } catch (ReflectiveOperationException | RuntimeException e) {
+                boundary.ifPresent(BoundaryHooks::warmUp);
+            } catch (RuntimeException e) {
                 // the first call starts it, or reports why it cannot
             }
         }
@@ -132,7 +133,7 @@ public final class TestMain {
         Map<String, Long> started = new ConcurrentHashMap<>();
         // Through the boundary a test's limit is the student's own time in its calls (StudentTime);
         // JUnit's clock, on wall time, is only a guard against a grader that hangs.
-        StudentTime studentTime = System.getProperty("raylab.boundary") != null ? new StudentTime(timeout) : null;
+        StudentTime studentTime = System.getProperty("raylab.boundary") != null ? new StudentTime(timeout, boundary) : null;
         int junitTimeout = studentTime == null ? timeout : StudentTime.guardSeconds(timeout);
         // A test whose code has not returned for the bound is stopped and named where it is stuck
         // (its student frames), long before the per-test timeout.
@@ -208,14 +209,13 @@ public final class TestMain {
             }
             if (groupBoundary.get(g) != null) {
                 // The student process of the groups before ends here: nothing it saw reaches this group.
-                Class.forName("raylab.boundary.Remote").getMethod("switchTo", Path.class)
-                        .invoke(null, Path.of(groupBoundary.get(g)));
+                present(boundary).switchTo(Path.of(groupBoundary.get(g)));
             }
             launcher.execute(request(groups.get(g), testClasses, tags, junitTimeout), listener);
         }
         channel.send("END");
         if (render != null) {
-            render(render);
+            render(render, present(boundary));
         }
         // Stray threads started by the code under test must not keep this JVM alive.
         Runtime.getRuntime().halt(0);
@@ -226,17 +226,22 @@ public final class TestMain {
      * code reaches a picture), then the renders; next to the list their time in ms
      * ({@code millis.txt}) and, with RAYLAB_GRADE_TIMES, their phases ({@code times.txt}).
      */
-    private static void render(String[] render) throws Exception {
+    private static void render(String[] render, BoundaryHooks boundary) throws Exception {
         Path list = Path.of(render[1]);
         long deadline = System.nanoTime() + Long.parseLong(render[2]) * 1_000_000_000L;
-        Class.forName("raylab.boundary.Remote").getMethod("switchTo", Path.class).invoke(null, Path.of(render[0]));
+        boundary.switchTo(Path.of(render[0]));
         long t0 = System.nanoTime();
         try (PrintStream times = new PrintStream(list.resolveSibling("times.txt").toFile(), StandardCharsets.UTF_8)) {
-            Class.forName("raylab.boundary.TrustedRender").getMethod("renderAll", List.class, long.class,
-                    PrintStream.class).invoke(null, java.nio.file.Files.readAllLines(list), deadline, times);
+            boundary.renderAll(java.nio.file.Files.readAllLines(list), deadline, times);
         }
         java.nio.file.Files.writeString(list.resolveSibling("millis.txt"),
                 Long.toString((System.nanoTime() - t0) / 1_000_000));
+    }
+
+    /** The process boundary, which {@code --then-boundary} and {@code --then-render} need. */
+    private static BoundaryHooks present(java.util.Optional<BoundaryHooks> boundary) {
+        return boundary.orElseThrow(() -> new IllegalStateException(
+                "--then-boundary and --then-render need the grader's process boundary, which this build does not have"));
     }
 
     private static LauncherDiscoveryRequest request(List<String> classes, Path testClasses, List<String> tags,

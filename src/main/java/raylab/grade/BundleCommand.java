@@ -17,6 +17,7 @@ import picocli.CommandLine.Option;
 import picocli.CommandLine.Parameters;
 import picocli.CommandLine.Spec;
 import picocli.CommandLine.Model.CommandSpec;
+import raylab.cli.OptionalCommand;
 import raylab.cli.UserError;
 import raylab.course.Assignment;
 import raylab.course.Assignments;
@@ -37,7 +38,7 @@ import raylab.course.Assignments;
 @Command(name = "bundle", mixinStandardHelpOptions = true,
         description = {"Build what a grading platform needs (instructors): gradescope (a zip), prairielearn or",
             "classroom50 (a new folder). Details: grader/README.md, docs/instructors.md."})
-public final class BundleCommand implements Callable<Integer> {
+public final class BundleCommand implements Callable<Integer>, OptionalCommand {
     @Spec
     CommandSpec spec;
 

@@ -16,6 +16,7 @@ import java.util.stream.Stream;
 import picocli.CommandLine.Command;
 import picocli.CommandLine.Option;
 import picocli.CommandLine.Parameters;
+import raylab.cli.OptionalCommand;
 import raylab.course.TestLauncher;
 
 /** {@code raylab grade SUBMISSION --out DIR}: the autograder (instructor tree only). */
@@ -27,7 +28,7 @@ import raylab.course.TestLauncher;
         exitCodeListHeading = "%nExit status:%n",
         exitCodeList = {"0:graded (whatever the score)", "1:the grader could not grade (results.json still written)",
             "2:bad option, or no such submission (results.json still written)"})
-public final class GradeCommand implements Callable<Integer> {
+public final class GradeCommand implements Callable<Integer>, OptionalCommand {
     @Parameters(index = "0", paramLabel = "SUBMISSION", description = "Directory or zip of the student's files.")
     Path submission;
 

@@ -350,17 +350,16 @@ final class GraderSetup {
         // One jar file, so that a student box links it instead of copying thousands of files.
         try (JarFile jar = new JarFile(t.framework.toFile());
                 var out = new java.util.jar.JarOutputStream(Files.newOutputStream(t.publicFramework))) {
-            for (var en : (Iterable<java.util.jar.JarEntry>) jar.stream()::iterator) {
+            List<JarEntry> kept = jar.stream().filter(en -> {
                 String n = en.getName();
-                if (en.isDirectory() || n.startsWith("META-INF/") && !n.startsWith("META-INF/services/")
-                        || left.stream().anyMatch(x -> x.endsWith("/") ? n.startsWith(x) : isClassOf(n, x))) {
-                    continue;
-                }
-                out.putNextEntry(new java.util.jar.JarEntry(n));
+                return !(en.isDirectory() || n.startsWith("META-INF/") && !n.startsWith(ServiceFiles.FOLDER)
+                        || left.stream().anyMatch(x -> x.endsWith("/") ? n.startsWith(x) : isClassOf(n, x)));
+            }).toList();
+            java.util.Set<String> names = kept.stream().map(JarEntry::getName).collect(Collectors.toSet());
+            for (JarEntry en : kept) {
                 try (var in = jar.getInputStream(en)) {
-                    in.transferTo(out);
+                    putEntry(out, en.getName(), in.readAllBytes(), names);
                 }
-                out.closeEntry();
             }
         }
         List<Path> withStubs = new ArrayList<>(below);
@@ -443,32 +442,52 @@ final class GraderSetup {
         try (OutputStream fo = Files.newOutputStream(out); JarOutputStream jar = new JarOutputStream(fo)) {
             jar.setLevel(1);
             if (Files.isDirectory(code)) {
+                List<Path> files;
                 try (Stream<Path> s = Files.walk(code)) {
-                    for (Path p : (Iterable<Path>) s.filter(Files::isRegularFile).sorted()::iterator) {
-                        String name = code.relativize(p).toString().replace(File.separatorChar, '/');
-                        if (!excluded(name, studentPrefixes)) {
-                            jar.putNextEntry(new JarEntry(name));
-                            Files.copy(p, jar);
-                            jar.closeEntry();
-                        }
+                    files = s.filter(Files::isRegularFile).sorted().toList();
+                }
+                Map<String, Path> kept = new LinkedHashMap<>();
+                for (Path p : files) {
+                    String name = code.relativize(p).toString().replace(File.separatorChar, '/');
+                    if (!excluded(name, studentPrefixes)) {
+                        kept.put(name, p);
                     }
+                }
+                for (Map.Entry<String, Path> e : kept.entrySet()) {
+                    putEntry(jar, e.getKey(), Files.readAllBytes(e.getValue()), kept.keySet());
                 }
             } else {
                 try (JarFile in = new JarFile(code.toFile())) {
-                    for (JarEntry e : (Iterable<JarEntry>) in.stream()::iterator) {
-                        if (e.isDirectory() || excluded(e.getName(), studentPrefixes)
-                                || e.getName().equals("META-INF/MANIFEST.MF")) {
-                            continue;
-                        }
-                        jar.putNextEntry(new JarEntry(e.getName()));
+                    List<JarEntry> kept = in.stream().filter(e -> !e.isDirectory() && !excluded(e.getName(), studentPrefixes)
+                            && !e.getName().equals("META-INF/MANIFEST.MF")).toList();
+                    java.util.Set<String> names = kept.stream().map(JarEntry::getName).collect(Collectors.toSet());
+                    for (JarEntry e : kept) {
                         try (InputStream is = in.getInputStream(e)) {
-                            is.transferTo(jar);
+                            putEntry(jar, e.getName(), is.readAllBytes(), names);
                         }
-                        jar.closeEntry();
                     }
                 }
             }
         }
+    }
+
+    /**
+     * Writes one entry of a jar that holds the entries {@code names}; a services file lists only
+     * the raylab providers among them ({@link ServiceFiles}), and is left out when none is.
+     */
+    private static void putEntry(JarOutputStream jar, String name, byte[] bytes, java.util.Set<String> names)
+            throws IOException {
+        if (name.startsWith(ServiceFiles.FOLDER)) {
+            String kept = ServiceFiles.keep(new String(bytes, StandardCharsets.UTF_8),
+                    c -> !c.startsWith("raylab.") || names.contains(ServiceFiles.classFile(c)));
+            if (kept == null) {
+                return;
+            }
+            bytes = kept.getBytes(StandardCharsets.UTF_8);
+        }
+        jar.putNextEntry(new JarEntry(name));
+        jar.write(bytes);
+        jar.closeEntry();
     }
 
     private static void copyClasses(Path code, Path out, List<String> prefixes) throws IOException {

@@ -10,12 +10,13 @@ import picocli.CommandLine.Parameters;
 import picocli.CommandLine.Spec;
 import picocli.CommandLine.Model.CommandSpec;
 import raylab.cli.Main;
+import raylab.cli.OptionalCommand;
 
 /** {@code raylab reference SCENE.json}: renders a scene's reference image with the solution. */
 @Command(name = "reference", mixinStandardHelpOptions = true,
         description = {"Render the reference image of a graded scene with the reference solution (instructors).",
             "Default output: reference/<name>.png next to the scene file (as listed in assignment.json)."})
-public final class ReferenceCommand implements Callable<Integer> {
+public final class ReferenceCommand implements Callable<Integer>, OptionalCommand {
     @Spec
     CommandSpec spec;
 

@@ -10,6 +10,8 @@ import picocli.CommandLine.Option;
 import picocli.CommandLine.Spec;
 import picocli.CommandLine.Model.CommandSpec;
 
+import raylab.cli.OptionalCommand;
+
 /**
  * {@code raylab self-check}: the course checks itself ({@link CourseCheck}); one line per problem
  * and exit status 1 when there is any. {@code bundle} runs the same check on the bundle's own
@@ -22,7 +24,7 @@ import picocli.CommandLine.Model.CommandSpec;
             "solution graded with these files scores full marks. One line per problem."},
         exitCodeListHeading = "%nExit status:%n",
         exitCodeList = {"0:the course is ready", "1:a problem (one line each)"})
-public final class SelfCheckCommand implements Callable<Integer> {
+public final class SelfCheckCommand implements Callable<Integer>, OptionalCommand {
     @Spec
     CommandSpec spec;
 

@@ -11,6 +11,7 @@ import picocli.CommandLine.Option;
 import picocli.CommandLine.Parameters;
 import picocli.CommandLine.Spec;
 import picocli.CommandLine.Model.CommandSpec;
+import raylab.cli.OptionalCommand;
 import raylab.cli.UserError;
 import raylab.course.Assignment;
 import raylab.course.Assignments;
@@ -26,7 +27,7 @@ import raylab.render.PngFiles;
             "The seed of a grading is in its report; details: docs/assignment-format.md."},
         exitCodeListHeading = "%nExit status:%n",
         exitCodeList = {"0:shown", "1:the image could not be written", "2:bad input (scene, spec or option)"})
-public final class VariantCommand implements Callable<Integer> {
+public final class VariantCommand implements Callable<Integer>, OptionalCommand {
     @Spec
     CommandSpec spec;
 

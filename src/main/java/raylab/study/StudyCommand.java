@@ -13,6 +13,7 @@ import picocli.CommandLine.Model.CommandSpec;
 import picocli.CommandLine.Option;
 import picocli.CommandLine.Spec;
 import raylab.bench.MachineInfo;
+import raylab.cli.OptionalCommand;
 import raylab.cli.UserError;
 
 /**
@@ -24,7 +25,7 @@ import raylab.cli.UserError;
             "Sampling, sphere and triangle methods, shadow-ray offsets, BVH against a linear group, box slabs, what the render",
             "plan saves. Writes DIR/report.md and PNG plots: an error-against-cost front per section, conclusions first,",
             "each from a stated decision rule, stamped with machine, JVM, date, load average and the measured noise."})
-public final class StudyCommand implements Callable<Integer> {
+public final class StudyCommand implements Callable<Integer>, OptionalCommand {
     @Spec
     CommandSpec spec;
 

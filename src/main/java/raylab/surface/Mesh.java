@@ -26,8 +26,9 @@ import raylab.ray.Ray;
  * <li>the packed engine, {@code PackedTriangles}: an instructor-only class (kept out of the
  * starter by {@code assignments/release.json}) with its own traversal and the reference
  * {@code Triangle.intersect} rewritten on the packed arrays, same hits, same t, bit for bit. It
- * is used only where this build has it and the class {@code Triangle} comes from the same code
- * source (class folder or jar) as it and {@code Mesh}: the instructor's own build. A student's
+ * is used only where this build provides it ({@link PackedEngine}, a service) and the class
+ * {@code Triangle} comes from the same code source (class folder or jar) as its provider and
+ * {@code Mesh}: the instructor's own build. A student's
  * {@code Triangle} compiled anywhere else (the starter, or an overlay over the reference classes
  * in the grader) selects the student kernel, and no field or method the student writes changes
  * that.</li>
@@ -48,15 +49,12 @@ public final class Mesh extends Surface {
         String traversal();
     }
 
-    /** Name of the instructor-only packed engine (not in the starter). */
-    static final String ENGINE_CLASS = "raylab.surface.PackedTriangles";
-
     /**
-     * The packed engine's constructor {@code (Mesh, double[] tri, BvhNodes tree, Material)}, or
-     * null: when this build has no such class, or when {@code Triangle}, {@code Mesh} and it do
-     * not all come from one code source and class loader.
+     * This build's packed engine ({@link PackedEngine}, a service: the instructor's build has one,
+     * the starter none), or null: when there is none, or when {@code Triangle}, {@code Mesh} and
+     * its provider do not all come from one code source and class loader.
      */
-    private static final java.lang.reflect.Constructor<?> ENGINE = findEngine();
+    private static final PackedEngine ENGINE = findEngine();
 
     /** Whether meshes of this build's own {@link Triangle} objects use the packed engine. */
     public static final boolean PACKED_ENGINE = ENGINE != null;
@@ -152,30 +150,27 @@ public final class Mesh extends Surface {
     }
 
     private Engine newEngine(double[] tri, BvhNodes tree, Material material) {
-        try {
-            return (Engine) ENGINE.newInstance(this, tri, tree, material);
-        } catch (ReflectiveOperationException e) {
-            throw new IllegalStateException("cannot make the packed mesh engine: " + e, e);
-        }
+        return ENGINE.of(this, tri, tree, material);
     }
 
-    private static java.lang.reflect.Constructor<?> findEngine() {
-        Class<?> c;
-        try {
-            c = Class.forName(ENGINE_CLASS, false, Mesh.class.getClassLoader());
-        } catch (ClassNotFoundException | LinkageError e) {
-            return null; // the starter: no packed engine
-        }
-        if (!Engine.class.isAssignableFrom(c) || !sameOrigin(c, Mesh.class) || !sameOrigin(Triangle.class, Mesh.class)) {
+    private static PackedEngine findEngine() {
+        if (!sameOrigin(Triangle.class, Mesh.class)) {
             return null;
         }
-        try {
-            java.lang.reflect.Constructor<?> k = c.getDeclaredConstructor(Mesh.class, double[].class, BvhNodes.class,
-                    Material.class);
-            k.setAccessible(true);
-            return k;
-        } catch (ReflectiveOperationException | RuntimeException e) {
-            return null;
+        java.util.Iterator<PackedEngine> it = java.util.ServiceLoader.load(PackedEngine.class, Mesh.class.getClassLoader())
+                .iterator();
+        while (true) {
+            try {
+                if (!it.hasNext()) {
+                    return null; // the starter: no packed engine
+                }
+                PackedEngine e = it.next();
+                if (sameOrigin(e.getClass(), Mesh.class)) {
+                    return e;
+                }
+            } catch (java.util.ServiceConfigurationError | LinkageError e) {
+                // a listed provider this build lacks or cannot make: not an engine
+            }
         }
     }
 

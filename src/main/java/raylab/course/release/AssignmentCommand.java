@@ -26,6 +26,7 @@ import picocli.CommandLine.Option;
 import picocli.CommandLine.Parameters;
 import picocli.CommandLine.Spec;
 import raylab.cli.Main;
+import raylab.cli.OptionalCommand;
 import raylab.cli.UserError;
 import raylab.course.Assignment;
 import raylab.course.Assignments;
@@ -46,7 +47,7 @@ import raylab.scene.SceneLoader;
         description = {"Add a graded scene, data cases or a hidden test to a milestone (instructors).",
             "Updates assignment.json, the milestone's points and its handout's grading table. See docs/instructors.md."},
         subcommands = {AssignmentCommand.AddScene.class, AssignmentCommand.AddCase.class, AddTestCommand.class})
-public final class AssignmentCommand implements Callable<Integer> {
+public final class AssignmentCommand implements Callable<Integer>, OptionalCommand {
     @Spec
     CommandSpec spec;
 

@@ -31,6 +31,7 @@ import raylab.course.Assignment;
 import raylab.course.Assignments;
 import raylab.course.GradingPlan;
 import raylab.course.SolutionRegions;
+import raylab.grade.ServiceFiles;
 
 /**
  * Cuts the student starter from the instructor's tree: the files {@code assignments/release.json}
@@ -129,6 +130,18 @@ public final class Release {
                 }
             }
         }
+        // A services file lists only the providers the starter has: the instructor's (commands, the
+        // packed mesh engine, the boundary hooks) would stop ServiceLoader, and so every command.
+        for (String rel : List.copyOf(out.keySet())) {
+            if (rel.startsWith(ServiceFiles.SOURCE_FOLDER)) {
+                String kept = ServiceFiles.keep(new String(out.get(rel), StandardCharsets.UTF_8), c -> ships(out, c));
+                if (kept == null) {
+                    out.remove(rel);
+                } else {
+                    out.put(rel, kept.getBytes(StandardCharsets.UTF_8));
+                }
+            }
+        }
         if (anyVisibleCase) {
             // Visible data cases run in ./raylab check, with the grader's case checker.
             out.put(CASE_CHECK_STARTER, Files.readAllBytes(root.resolve(CASE_CHECK)));
@@ -149,6 +162,11 @@ public final class Release {
             }
         }
         return new Tree(out, Set.copyOf(exec), List.copyOf(stubbed), assignments.ids());
+    }
+
+    /** Whether the starter (its files by relative path) has the source of a class of src/main/java. */
+    static boolean ships(Map<String, byte[]> starter, String className) {
+        return starter.containsKey("src/main/java/" + ServiceFiles.sourceFile(className));
     }
 
     /**

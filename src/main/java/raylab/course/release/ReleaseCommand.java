@@ -10,6 +10,7 @@ import picocli.CommandLine.Command;
 import picocli.CommandLine.Model.CommandSpec;
 import picocli.CommandLine.Option;
 import picocli.CommandLine.Spec;
+import raylab.cli.OptionalCommand;
 import raylab.cli.UserError;
 
 /**
@@ -22,7 +23,7 @@ import raylab.cli.UserError;
         exitCodeListHeading = "%nExit status:%n",
         exitCodeList = {"0:written and every check passed", "1:a check failed, or the starter could not be written",
             "2:bad option"})
-public final class ReleaseCommand implements Callable<Integer> {
+public final class ReleaseCommand implements Callable<Integer>, OptionalCommand {
     @Spec
     CommandSpec spec;
 

@@ -34,6 +34,7 @@ import raylab.course.MilestoneCheck;
 import raylab.course.SolutionRegions;
 import raylab.course.TestLauncher;
 import raylab.course.TestResult;
+import raylab.grade.ServiceFiles;
 import raylab.render.ImageCompare;
 import raylab.render.PngFiles;
 
@@ -177,6 +178,28 @@ public final class ReleaseVerifier {
         return named;
     }
 
+    /**
+     * Providers that a services file of the starter lists and whose source the starter lacks
+     * ({@code ServiceLoader} would stop every command there): "FILE:LINE lists NAME, ...".
+     */
+    static List<String> unshippedProviders(Path starter, List<String> files) throws IOException {
+        Set<String> have = new HashSet<>(files);
+        List<String> out = new ArrayList<>();
+        for (String rel : files) {
+            if (rel.startsWith(ServiceFiles.SOURCE_FOLDER)) {
+                String[] lines = Files.readString(starter.resolve(rel)).split("\n", -1);
+                for (int i = 0; i < lines.length; i++) {
+                    for (String c : ServiceFiles.providers(lines[i])) {
+                        if (!have.contains("src/main/java/" + ServiceFiles.sourceFile(c))) {
+                            out.add(rel + ":" + (i + 1) + " lists " + c + ", which the starter does not have");
+                        }
+                    }
+                }
+            }
+        }
+        return out;
+    }
+
     private static List<Check> get(Future<List<Check>> f, String what) {
         try {
             return f.get();
@@ -289,6 +312,8 @@ public final class ReleaseVerifier {
         hiddenNames.forEach(n -> hiddenClasses.add(n.endsWith(".java") ? n.substring(0, n.length() - 5) : n));
         out.add(Check.of("no file names a hidden test or grader/", namesHidden(starter, files, hiddenClasses),
                 hiddenClasses.size() + " hidden test names looked for"));
+
+        out.add(Check.of("services files list only the starter's classes", unshippedProviders(starter, files), ""));
 
         List<String> desc = new ArrayList<>();
         try {

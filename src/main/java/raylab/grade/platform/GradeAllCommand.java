@@ -35,6 +35,7 @@ import picocli.CommandLine.Model.CommandSpec;
 import picocli.CommandLine.Option;
 import picocli.CommandLine.Parameters;
 import picocli.CommandLine.Spec;
+import raylab.cli.OptionalCommand;
 import raylab.cli.UserError;
 import raylab.course.Assignment;
 import raylab.course.Assignments;
@@ -54,7 +55,7 @@ import raylab.course.Assignments;
             "Details: docs/instructors.md."},
         exitCodeListHeading = "%nExit status:%n",
         exitCodeList = {"0:every submission graded", "1:some could not be graded (their rows say so)", "2:bad option"})
-public final class GradeAllCommand implements Callable<Integer> {
+public final class GradeAllCommand implements Callable<Integer>, OptionalCommand {
     /** The marker of a finished grading: the submission's digest. */
     static final String DONE = ".raylab-graded";
     /** Held by the grade-all that grades the student (released by the kernel when it ends, however). */

@@ -58,7 +58,7 @@ class AddSceneTest {
             """;
 
     static Path copy(Path root, Path to) throws IOException {
-        for (String d : List.of("assignments", "scenes", "grader", "src/main/java", "src/test/java")) {
+        for (String d : List.of("assignments", "scenes", "grader", "src/main/java", "src/main/resources", "src/test/java")) {
             copyTree(root.resolve(d), to.resolve(d));
         }
         return to;

@@ -120,6 +120,14 @@ class PlaneMilestoneTest {
                 "the student stub, cut from the solution markers: " + stub);
         assertTrue(Files.exists(dir.resolve("starter/src/main/java/raylab/surface/PlaneType.java"))
                 && Files.exists(dir.resolve("starter/" + added.get(2))), "the scene entry ships with the starter");
+        assertEquals(Files.readString(course.resolve(added.get(2))), Files.readString(dir.resolve("starter/" + added.get(2))),
+                "the services file keeps its provider, whose source the starter ships");
+        for (String instructorOnly : List.of("raylab.cli.OptionalCommand", "raylab.surface.PackedEngine",
+                "raylab.course.BoundaryHooks")) {
+            assertTrue(Files.exists(course.resolve("src/main/resources/META-INF/services/" + instructorOnly))
+                    && !Files.exists(dir.resolve("starter/src/main/resources/META-INF/services/" + instructorOnly)),
+                    "the course lists instructor-only providers for " + instructorOnly + ", the starter none");
+        }
 
         // The scene schema knows the plane, in the starter and in the instructor's tree.
         assertTrue(rel.out().contains("updated scenes/scene.schema.json with the surface types plane"), rel.out());

@@ -1,0 +1,14 @@
+package raylab.surface;
+
+import raylab.material.Material;
+
+/**
+ * Provides {@link PackedTriangles} as this build's {@link PackedEngine} (listed in
+ * {@code META-INF/services/raylab.surface.PackedEngine}; instructor-only, as the engine).
+ */
+public final class PackedTrianglesProvider implements PackedEngine {
+    @Override
+    public Mesh.Engine of(Mesh mesh, double[] tri, BvhNodes tree, Material material) {
+        return new PackedTriangles(mesh, tri, tree, material);
+    }
+}
