@@ -29,7 +29,7 @@ import raylab.scene.SceneLoader;
  */
 final class ReferenceTraces {
     /** The largest 8-bit difference allowed between a trace's colour and the reference image (the
-     * trace keeps colours to 11 mantissa bits, which can move a value by one step). */
+     * trace keeps colours in steps of 1/4096, which can move a value by one step). */
     static final int TOLERANCE = 1;
 
     private ReferenceTraces() {
@@ -41,7 +41,8 @@ final class ReferenceTraces {
             Path json = root.resolve(scene);
             byte[] png = files.get(referenceOf(scene));
             String key = hash(files.get(scene), png);
-            Path cached = root.resolve("target/release-traces").resolve(name(scene) + "-" + key + ".trace");
+            Path cached = root.resolve("target/release-traces")
+                    .resolve(name(scene) + "-" + key + "-v" + TraceFile.FORMAT + ".trace");
             if (!Files.isRegularFile(cached)) {
                 Scene s;
                 try {
