@@ -29,6 +29,7 @@ import raylab.scene.Scene;
  * the image the students already have.
  *
  * <p>Format (gzip): the line {@code RAYLAB-TRACE 2}, then (Java DataOutput) width, height, the
+ * stride (every stride-th pixel of every stride-th row is traced: 1 for all of them), the
  * background, the surface names and kinds, the light names, then one column per quantity. Each
  * value is 24 bits: t is its float32 rounded to {@link #T_BITS} bits of mantissa, a normal or a
  * colour is fixed-point (see {@link #COLOUR_SCALE}), an index or a count is itself; {@link #NULL}
@@ -53,17 +54,17 @@ public final class TraceFile {
     static final int LIGHT_COLUMNS = 9;
     /**
      * The roundings, each well inside the comparison's 3e-3 ({@link FirstDifference#REL}, absolute
-     * for normals and for colours up to 1): t and blocker t keep 12 mantissa bits of their float32
-     * (relative error at most 1.2e-4, so that the point p + t·d moves by less than 1.2e-4·t·|d|);
-     * a normal's components are fixed-point in steps of 1/{@value #NORMAL_SCALE} (error 2.4e-4),
+     * for normals and for colours up to 1): t and blocker t keep 11 mantissa bits of their float32
+     * (relative error at most 2.4e-4, so that the point p + t·d moves by less than 2.4e-4·t·|d|);
+     * a normal's components are fixed-point in steps of 1/{@value #NORMAL_SCALE} (error 4.9e-4),
      * the terms ka·Ia, diffuse and specular in steps of 1/{@value #TERM_SCALE} (4.9e-4), the
      * pixel's colour in steps of 1/{@value #COLOUR_SCALE} (1.2e-4: within one 8-bit step of the
      * reference image even where the sRGB curve is steepest, near black, as the release checks).
      * The traces' size is mostly these rounding bits: each bit less is about a bit less per value
      * of a smooth field.
      */
-    static final int T_BITS = 12;
-    static final int NORMAL_SCALE = 2048;
+    static final int T_BITS = 11;
+    static final int NORMAL_SCALE = 1024;
     static final int TERM_SCALE = 1024;
     static final int COLOUR_SCALE = 4096;
     /** Fixed-point values are stored offset by 2^23, so that their codes order as they do. */
@@ -72,8 +73,35 @@ public final class TraceFile {
     public static final String FORMAT = VERSION + "." + T_BITS + "." + NORMAL_SCALE + "." + TERM_SCALE + "."
             + COLOUR_SCALE;
 
+    /**
+     * The most pixels a trace keeps: a larger scene's trace keeps every k-th pixel of every k-th
+     * row, k the smallest that fits, so that the starter stays small (the traces are most of it);
+     * {@code inspect} and {@code check} then show the nearest traced pixel. 30,000: the scenes of
+     * 200×150 and less every pixel, the 400×300 scenes every 2nd (200×150), mesh.json (400×400)
+     * every 3rd, showcase.json (1280×720) every 6th (214×120). The 15 published scenes' traces:
+     * 1.88 MB with every pixel, about 1.1 MB with 160,000 (only the showcase reduced), 0.50 MB with
+     * 30,000, and the starter 1.19 MB as a .tar.gz (README, "See why a pixel is wrong"; the release writes them, {@code ReferenceTraces}).
+     */
+    public static final int MAX_TRACED = 30_000;
+
+    /** The smallest k for which every k-th pixel of every k-th row is at most {@link #MAX_TRACED} pixels. */
+    public static int strideFor(int width, int height) {
+        int k = 1;
+        while ((long) ((width + k - 1) / k) * ((height + k - 1) / k) > MAX_TRACED) {
+            k++;
+        }
+        return k;
+    }
+
     public final int width;
     public final int height;
+    /**
+     * Every stride-th pixel of every stride-th row is traced, from (0, 0): 1 for every pixel; a
+     * larger scene's trace keeps fewer ({@link #traced(int, int)} gives the pixel a click stands for).
+     */
+    public final int stride;
+    /** The traced grid's size. */
+    private final int gw;
     public final Color background;
     final List<String> surfaces;
     final List<String> kinds;
@@ -84,17 +112,19 @@ public final class TraceFile {
     private final int[] hitIndex;
     private final Scene scene;
 
-    private TraceFile(Scene scene, int width, int height, Color background, List<String> surfaces,
+    private TraceFile(Scene scene, int width, int height, int stride, Color background, List<String> surfaces,
             List<String> kinds, List<String> lights, int[][] columns) {
         this.scene = scene;
         this.width = width;
         this.height = height;
+        this.stride = stride;
+        this.gw = (width + stride - 1) / stride;
         this.background = background;
         this.surfaces = surfaces;
         this.kinds = kinds;
         this.lights = lights;
         this.columns = columns;
-        this.hitIndex = new int[width * height];
+        this.hitIndex = new int[columns[0].length];
         int n = 0;
         for (int i = 0; i < hitIndex.length; i++) {
             hitIndex[i] = columns[0][i] == 0 ? -1 : n++;
@@ -110,9 +140,19 @@ public final class TraceFile {
 
     /** Traces every pixel of the scene with the code on the class path and writes the file. */
     public static long write(Tracer tracer, Path target) throws IOException {
+        return write(tracer, target, 1);
+    }
+
+    /** Traces every stride-th pixel of every stride-th row and writes the file. */
+    public static long write(Tracer tracer, Path target, int stride) throws IOException {
+        if (stride < 1) {
+            throw new IllegalArgumentException("stride " + stride);
+        }
         Scene scene = tracer.scene();
-        int w = scene.width;
-        int h = scene.height;
+        int fullW = scene.width;
+        int fullH = scene.height;
+        int w = (fullW + stride - 1) / stride;
+        int h = (fullH + stride - 1) / stride;
         Map<String, Integer> names = new LinkedHashMap<>();
         List<String> kinds = new ArrayList<>();
         List<String> lightNames = scene.lights.stream().map(l -> l.name).toList();
@@ -121,7 +161,7 @@ public final class TraceFile {
         List<int[]> rows = new ArrayList<>();
         for (int y = 0; y < h; y++) {
             for (int x = 0; x < w; x++) {
-                RayTree t = tracer.trace(x, y);
+                RayTree t = tracer.trace(x * stride, y * stride);
                 if (!t.hit()) {
                     continue;
                 }
@@ -164,8 +204,9 @@ public final class TraceFile {
                 };
                 DataOutputStream out = new DataOutputStream(gz)) {
             out.write(MAGIC.getBytes(StandardCharsets.US_ASCII));
-            out.writeInt(w);
-            out.writeInt(h);
+            out.writeInt(fullW);
+            out.writeInt(fullH);
+            out.writeInt(stride);
             out.writeDouble(scene.background.r);
             out.writeDouble(scene.background.g);
             out.writeDouble(scene.background.b);
@@ -209,12 +250,18 @@ public final class TraceFile {
             if (!MAGIC.equals(new String(magic, StandardCharsets.US_ASCII))) {
                 throw new IOException(file + ": not a raylab trace file");
             }
-            int w = d.readInt();
-            int h = d.readInt();
-            if (w != scene.width || h != scene.height) {
-                throw new IOException(file + " is for a " + w + "x" + h + " image, the scene is " + scene.width
+            int fullW = d.readInt();
+            int fullH = d.readInt();
+            if (fullW != scene.width || fullH != scene.height) {
+                throw new IOException(file + " is for a " + fullW + "x" + fullH + " image, the scene is " + scene.width
                         + "x" + scene.height + ": the trace is out of date");
             }
+            int stride = d.readInt();
+            if (stride < 1 || stride > Math.max(fullW, fullH)) {
+                throw new IOException(file + ": corrupt (stride " + stride + ")");
+            }
+            int w = (fullW + stride - 1) / stride;
+            int h = (fullH + stride - 1) / stride;
             Color bg = new Color(d.readDouble(), d.readDouble(), d.readDouble());
             int ns = d.readInt();
             List<String> names = new ArrayList<>();
@@ -246,25 +293,45 @@ public final class TraceFile {
                 }
             }
             System.arraycopy(hit, 0, columns, 1, hit.length);
-            return new TraceFile(scene, w, h, bg, names, kinds, lights, columns);
+            return new TraceFile(scene, fullW, fullH, stride, bg, names, kinds, lights, columns);
         } catch (java.io.EOFException | java.util.zip.ZipException e) {
             throw new IOException(file + ": truncated or corrupt trace file");
         }
     }
 
-    /** The reference's ray tree of pixel (x, y). */
-    public RayTree tree(int x, int y) {
+    /** The traced pixel nearest to (x, y): itself when the trace has every pixel. */
+    public int[] traced(int x, int y) {
+        int sx = Math.min((int) Math.round((double) x / stride), gw - 1) * stride;
+        int sy = Math.min((int) Math.round((double) y / stride), (height + stride - 1) / stride - 1) * stride;
+        return new int[] {sx, sy};
+    }
+
+    /** Whether pixel (x, y) is one the trace has. */
+    public boolean isTraced(int x, int y) {
+        return x % stride == 0 && y % stride == 0;
+    }
+
+    private int cell(int x, int y) {
+        int[] p = traced(x, y);
+        return p[1] / stride * gw + p[0] / stride;
+    }
+
+    /** The reference's ray tree of the traced pixel nearest to (x, y) ({@link #traced}). */
+    public RayTree tree(int px, int py) {
+        int[] p = traced(px, py);
+        int x = p[0];
+        int y = p[1];
         var ray = scene.camera.rayThroughPixelCenter(x, y);
         RayTree t = new RayTree(x, y, ray.p, ray.d);
         for (String l : lights) {
             t.light(l);
         }
-        int s = columns[0][y * width + x];
+        int s = columns[0][cell(x, y)];
         if (s == 0) {
             t.colour = background;
             return t;
         }
-        int i = hitIndex[y * width + x];
+        int i = hitIndex[cell(x, y)];
         t.surface = surfaces.get(s - 1);
         t.kind = kinds.get(s - 1);
         t.t = val(col(0, i));
@@ -288,10 +355,11 @@ public final class TraceFile {
         return t;
     }
 
-    /** The linear colour of pixel (x, y) as the reference traced it (one ray through the centre). */
+    /** The linear colour of the traced pixel nearest to (x, y) as the reference traced it (one ray through the centre). */
     public Color colourAt(int x, int y) {
-        int s = columns[0][y * width + x];
-        return s == 0 ? background : colour(hitIndex[y * width + x], 9);
+        int c = cell(x, y);
+        int s = columns[0][c];
+        return s == 0 ? background : colour(hitIndex[c], 9);
     }
 
     private int col(int c, int i) {

@@ -42,7 +42,7 @@ final class ReferenceTraces {
             byte[] png = files.get(referenceOf(scene));
             String key = hash(files.get(scene), png);
             Path cached = root.resolve("target/release-traces")
-                    .resolve(name(scene) + "-" + key + "-v" + TraceFile.FORMAT + ".trace");
+                    .resolve(name(scene) + "-" + key + "-v" + TraceFile.FORMAT + "-" + TraceFile.MAX_TRACED + ".trace");
             if (!Files.isRegularFile(cached)) {
                 Scene s;
                 try {
@@ -50,7 +50,7 @@ final class ReferenceTraces {
                 } catch (SceneException e) {
                     throw new IOException(scene + ": " + e.getMessage(), e);
                 }
-                TraceFile.write(new Tracer(s), cached);
+                TraceFile.write(new Tracer(s), cached, TraceFile.strideFor(s.width, s.height));
             }
             files.put(traceOf(scene), Files.readAllBytes(cached));
         }
@@ -97,8 +97,8 @@ final class ReferenceTraces {
                 BufferedImage ref = PngFiles.read(starter.resolve(referenceOf(scene)));
                 long off = 0;
                 int worst = 0;
-                for (int y = 0; y < s.height; y++) {
-                    for (int x = 0; x < s.width; x++) {
+                for (int y = 0; y < s.height; y += t.stride) {
+                    for (int x = 0; x < s.width; x += t.stride) {
                         int a = Image.toRgb8(t.colourAt(x, y));
                         int b = ref.getRGB(x, y);
                         int d = 0;

@@ -59,9 +59,17 @@ class ReferenceTracesTest {
             raylab.scene.Scene sc = raylab.scene.SceneLoader.load(dir.resolve(scene));
             raylab.inspect.TraceFile stored = raylab.inspect.TraceFile.read(dir.resolve(ReferenceTraces.traceOf(scene)), sc);
             raylab.inspect.Tracer live = new raylab.inspect.Tracer(sc);
+            int stride = raylab.inspect.TraceFile.strideFor(sc.width, sc.height);
+            assertEquals(stride, stored.stride, scene + ": the trace's stride");
+            int expected = Map.of("scenes/showcase.json", 6, "scenes/mesh.json", 3).getOrDefault(scene,
+                    (long) sc.width * sc.height > raylab.inspect.TraceFile.MAX_TRACED ? 2 : 1);
+            assertEquals(expected, stride, scene + " (" + sc.width + "x" + sc.height + "): every pixel traced up to "
+                    + raylab.inspect.TraceFile.MAX_TRACED + " pixels, else every k-th pixel of every k-th row");
             for (int k = 0; k < 300; k++) {
-                int x = random.nextInt(sc.width);
-                int y = random.nextInt(sc.height);
+                int[] p = stored.traced(random.nextInt(sc.width), random.nextInt(sc.height));
+                int x = p[0];
+                int y = p[1];
+                assertTrue(stored.isTraced(x, y) && x < sc.width && y < sc.height, "a traced pixel: " + x + ", " + y);
                 raylab.inspect.RayTree a = live.trace(x, y);
                 raylab.inspect.RayTree b = stored.tree(x, y);
                 var d = raylab.inspect.FirstDifference.of(a, b, sc);
