@@ -111,7 +111,8 @@ public final class InspectCommand implements Callable<Integer> {
     private int print(PrintWriter out, Inspection in) {
         Optional<String> line;
         if (pixel != null) {
-            line = in.difference(pixel[0], pixel[1]).map(d -> "pixel (" + pixel[0] + ", " + pixel[1] + "): " + d.line());
+            int[] at = in.traced(pixel[0], pixel[1]);
+            line = in.difference(at[0], at[1]).map(d -> "pixel (" + at[0] + ", " + at[1] + "): " + d.line());
         } else {
             line = in.worst(in.render(threads)).map(Inspection.Finding::line);
         }

@@ -124,6 +124,9 @@ public final class InspectPage {
             o.put("error", "pixel (" + x + ", " + y + ") is outside the image");
             return JSON.writeValueAsString(o);
         }
+        int[] at = inspection.traced(x, y);
+        x = at[0];
+        y = at[1];
         o.put("x", x);
         o.put("y", y);
         RayTree ref = inspection.reference(x, y);
@@ -165,7 +168,11 @@ public final class InspectPage {
                 .append("</style></head><body><h1 style=\"font-size:20px\">").append(TreeTable.esc(title)).append("</h1>")
                 .append("<p id=\"summary\">").append(TreeTable.esc(c.summary()))
                 .append(worst.map(f -> "; worst pixel (" + f.x() + ", " + f.y() + ")").orElse(""))
-                .append(". Click a pixel of any picture to see your ray tree beside the reference's.</p>");
+                .append(". Click a pixel of any picture to see your ray tree beside the reference's")
+                .append(inspection.reference.stride == 1 ? "" : " (this scene's reference trace keeps every "
+                        + inspection.reference.stride + "th pixel of every " + inspection.reference.stride
+                        + "th row, to keep the starter small: a click shows the nearest)")
+                .append(".</p>");
         for (String[] p : List.of(new String[] {"mine", "your render", dataUri(mine)},
                 new String[] {"reference", "reference", dataUri(inspection.referenceImage)},
                 new String[] {"diff", "difference", dataUri(c.diff())})) {
@@ -189,6 +196,10 @@ public final class InspectPage {
                   var diff = document.getElementById('difference');
                   if (d.error) { diff.textContent = d.error; document.getElementById('tree').innerHTML = ''; return; }
                   diff.textContent = d.difference;
+                  if (d.x != x || d.y != y) {
+                    document.getElementById('pixel').textContent = 'pixel (' + x + ', ' + y + '): the trees of pixel ('
+                        + d.x + ', ' + d.y + '), the nearest the reference trace has';
+                  }
                   diff.setAttribute('data-method', d.method);
                   var h = '<tr><th>quantity</th><th>yours</th><th>reference</th></tr>';
                   d.rows.forEach(function (r) {

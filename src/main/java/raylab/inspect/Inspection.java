@@ -77,11 +77,20 @@ public final class Inspection {
         return tracer.trace(x, y);
     }
 
+    /** The reference's ray tree of pixel (x, y), which must be a {@link #traced} one. */
     public RayTree reference(int x, int y) {
         return reference.tree(x, y);
     }
 
-    /** The first difference at pixel (x, y), if any. */
+    /**
+     * The pixel the trees of (x, y) are shown for: (x, y) itself, or, in a scene whose reference
+     * trace keeps every stride-th pixel (the large ones, to keep the starter small), the nearest such.
+     */
+    public int[] traced(int x, int y) {
+        return reference.traced(x, y);
+    }
+
+    /** The first difference at pixel (x, y), if any; (x, y) must be a {@link #traced} pixel. */
     public Optional<FirstDifference.Difference> difference(int x, int y) {
         return FirstDifference.of(mine(x, y), reference(x, y), scene);
     }
@@ -113,9 +122,14 @@ public final class Inspection {
             }
         }
         order.sort((a, b) -> a[0] != b[0] ? Long.compare(b[0], a[0]) : Long.compare(a[1], b[1]));
-        for (int i = 0; i < Math.min(WORST_TRIED, order.size()); i++) {
-            int x = (int) (order.get(i)[1] % w);
-            int y = (int) (order.get(i)[1] / w);
+        java.util.Set<Long> tried = new java.util.HashSet<>();
+        for (int i = 0; i < order.size() && tried.size() < WORST_TRIED; i++) {
+            int[] p = traced((int) (order.get(i)[1] % w), (int) (order.get(i)[1] / w));
+            int x = p[0];
+            int y = p[1];
+            if (!tried.add(y * (long) w + x)) {
+                continue;
+            }
             Optional<FirstDifference.Difference> d = difference(x, y);
             if (d.isPresent()) {
                 return Optional.of(new Finding(x, y, (int) order.get(i)[0], d.get()));

@@ -24,8 +24,8 @@ class GradedPixelFeedbackTest {
     @TempDir
     Path dir;
 
-    /** Grades one planted mistake and checks the scene's feedback names it. */
-    private void planted(String overlay, String milestone, String sceneFile, String method, String phrase)
+    /** Grades one planted mistake, checks the scene's feedback names it, and gives the results. */
+    private JsonNode planted(String overlay, String milestone, String sceneFile, String method, String phrase)
             throws IOException {
         long seed = 4040;
         Path out = dir.resolve("out-" + milestone);
@@ -34,6 +34,7 @@ class GradedPixelFeedbackTest {
         JsonNode t = GradedVariantsTest.scene(r, sceneFile);
         String where = "seed " + seed + ", " + overlay + ", variant of " + sceneFile;
         assertEquals(0, t.get("score").asDouble(), 1e-9, where + ": the scene differs: " + t);
+        assertEquals("failed", t.get("status").asText(), where + ": the scene differs: " + t);
         String msg = t.get("output").asText();
         System.out.println(where + ": " + msg);
         assertTrue(msg.contains("the most common first difference") && msg.contains(method) && msg.contains(phrase),
@@ -48,6 +49,7 @@ class GradedPixelFeedbackTest {
             assertFalse(part.contains("<script") || part.contains("onclick") || part.contains("<style"),
                     where + ": static HTML with inline styles only: " + part);
         }
+        return r;
     }
 
     @Test
@@ -63,6 +65,27 @@ class GradedPixelFeedbackTest {
     @Test
     void unnormalisedHalfVectorNamedInTheFeedbackOfTheHighlightVariants() throws IOException {
         planted("bugs1", "phong", "highlights.json", "BlinnPhong.specular", "unit vector");
+    }
+
+    /**
+     * The only lambert scene with points, diffuse.json, has no ambient light, so a shade() without
+     * ka·Ia matches it; diffuse-ambient.json (0 points, feedback only) shows the ambient term and
+     * its feedback names it, while the milestone's points and the submission's score are unchanged.
+     */
+    @Test
+    void missingAmbientNamedInTheFeedbackOfTheAmbientSceneWhichEarnsNothing() throws IOException {
+        JsonNode r = planted("inspect/shading-no-ambient", "lambert", "diffuse-ambient.json", "Shading.shade",
+                "leaves out the ambient term");
+        JsonNode ambient = GradedVariantsTest.scene(r, "diffuse-ambient.json");
+        assertEquals(0, ambient.get("max_score").asDouble(), 1e-9, "feedback only, no points: " + ambient);
+        JsonNode diffuse = GradedVariantsTest.scene(r, "diffuse.json");
+        assertEquals(2, diffuse.get("score").asDouble(), 1e-9,
+                "diffuse.json has no ambient light: the same shade() matches it: " + diffuse);
+        double max = 0;
+        for (JsonNode t : r.get("tests")) {
+            max += t.get("max_score").asDouble();
+        }
+        assertEquals(10, max, 1e-9, "the lambert milestone's points (assignment.json) are unchanged");
     }
 
     @Test

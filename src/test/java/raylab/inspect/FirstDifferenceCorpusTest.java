@@ -29,7 +29,7 @@ class FirstDifferenceCorpusTest {
     @BeforeAll
     void traces() throws Exception {
         scenes = InspectCorpus.scenesWithTraces(dir, InspectCorpus.BUGS.stream().map(InspectCorpus.Bug::scene)
-                .distinct().toList());
+                .distinct().toList(), true);
     }
 
     @Test
@@ -106,8 +106,9 @@ class FirstDifferenceCorpusTest {
         long seed = 40;
         java.util.SplittableRandom r = new java.util.SplittableRandom(seed);
         for (int k = 0; k < 500; k++) {
-            int x = r.nextInt(scene.width);
-            int y = r.nextInt(scene.height);
+            int[] p = f.traced(r.nextInt(scene.width), r.nextInt(scene.height));
+            int x = p[0];
+            int y = p[1];
             RayTree live = t.trace(x, y);
             RayTree stored = f.tree(x, y);
             var d = FirstDifference.of(live, stored, scene);

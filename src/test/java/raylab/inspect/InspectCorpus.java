@@ -53,13 +53,23 @@ final class InspectCorpus {
         return Path.of(System.getProperty("raylab.grade.root", ".")).toAbsolutePath().normalize();
     }
 
-    /** A copy of scenes/ with the reference's traces of {@code names} (traced by the classes on the class path). */
+    /**
+     * A copy of scenes/ with the reference's traces of {@code names} (traced by the classes on the
+     * class path), every pixel of each.
+     */
     static Path scenesWithTraces(Path dir, List<String> names) throws Exception {
+        return scenesWithTraces(dir, names, false);
+    }
+
+    /** As above; {@code asShipped}: with the release's stride ({@link TraceFile#strideFor}), as the starter has them. */
+    static Path scenesWithTraces(Path dir, List<String> names, boolean asShipped) throws Exception {
         Path scenes = dir.resolve("scenes");
         copy(root().resolve("scenes"), scenes);
         for (String n : names) {
             Path json = scenes.resolve(n + ".json");
-            TraceFile.write(new Tracer(SceneLoader.load(json)), TraceFile.pathFor(json));
+            var scene = SceneLoader.load(json);
+            TraceFile.write(new Tracer(scene), TraceFile.pathFor(json),
+                    asShipped ? TraceFile.strideFor(scene.width, scene.height) : 1);
         }
         return scenes;
     }

@@ -160,7 +160,8 @@ public final class AssignmentCommand implements Callable<Integer>, OptionalComma
         @Parameters(index = "1", paramLabel = "SCENE.json", description = "The scene file.")
         Path scene;
 
-        @Option(names = "--points", required = true, paramLabel = "N", description = "Points for a match (whole, >= 1).")
+        @Option(names = "--points", required = true, paramLabel = "N", description = "Points for a match (whole, >= 0; 0: a feedback-only scene, graded and shown with its"
+                + " pixel feedback but earning nothing).")
         int points;
 
         @Option(names = "--tolerance", paramLabel = "T",
@@ -181,8 +182,8 @@ public final class AssignmentCommand implements Callable<Integer>, OptionalComma
         @Override
         public Integer call() throws Exception {
             PrintWriter out = spec.commandLine().getOut();
-            if (points < 1) {
-                throw UserError.badInput("--points must be at least 1, got " + points);
+            if (points < 0) {
+                throw UserError.badInput("--points must be 0 or more, got " + points);
             }
             if (tolerance != null && !(tolerance >= 0 && tolerance < 1)) {
                 throw UserError.badInput("--tolerance must be a fraction in [0, 1), got " + tolerance);

@@ -138,7 +138,9 @@ public final class HandoutTable {
         }
         for (GradingPlan.Item s : plan.of(GradingPlan.Kind.SCENE)) {
             b.append("| `").append(s.name()).append("` matches its reference (tolerance ")
-                    .append(GradingPlan.percent(s.tolerance())).append(") | ").append(GradingPlan.points(s.cents())).append(" |\n");
+                    .append(GradingPlan.percent(s.tolerance())).append(")")
+                    .append(s.cents() == 0 ? ", feedback only: graded and explained pixel by pixel, no points" : "")
+                    .append(" | ").append(GradingPlan.points(s.cents())).append(" |\n");
         }
         b.append("| **total** | **").append(a.points()).append("** |");
         return b.toString();

@@ -29,7 +29,7 @@ import raylab.scene.SceneLoader;
  */
 final class ReferenceTraces {
     /** The largest 8-bit difference allowed between a trace's colour and the reference image (the
-     * trace keeps colours to 11 mantissa bits, which can move a value by one step). */
+     * trace keeps colours in steps of 1/4096, which can move a value by one step). */
     static final int TOLERANCE = 1;
 
     private ReferenceTraces() {
@@ -41,7 +41,8 @@ final class ReferenceTraces {
             Path json = root.resolve(scene);
             byte[] png = files.get(referenceOf(scene));
             String key = hash(files.get(scene), png);
-            Path cached = root.resolve("target/release-traces").resolve(name(scene) + "-" + key + ".trace");
+            Path cached = root.resolve("target/release-traces")
+                    .resolve(name(scene) + "-" + key + "-v" + TraceFile.FORMAT + "-" + TraceFile.MAX_TRACED + ".trace");
             if (!Files.isRegularFile(cached)) {
                 Scene s;
                 try {
@@ -49,7 +50,7 @@ final class ReferenceTraces {
                 } catch (SceneException e) {
                     throw new IOException(scene + ": " + e.getMessage(), e);
                 }
-                TraceFile.write(new Tracer(s), cached);
+                TraceFile.write(new Tracer(s), cached, TraceFile.strideFor(s.width, s.height));
             }
             files.put(traceOf(scene), Files.readAllBytes(cached));
         }
@@ -96,8 +97,8 @@ final class ReferenceTraces {
                 BufferedImage ref = PngFiles.read(starter.resolve(referenceOf(scene)));
                 long off = 0;
                 int worst = 0;
-                for (int y = 0; y < s.height; y++) {
-                    for (int x = 0; x < s.width; x++) {
+                for (int y = 0; y < s.height; y += t.stride) {
+                    for (int x = 0; x < s.width; x += t.stride) {
                         int a = Image.toRgb8(t.colourAt(x, y));
                         int b = ref.getRGB(x, y);
                         int d = 0;
