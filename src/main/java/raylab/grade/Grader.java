@@ -93,17 +93,6 @@ public final class Grader {
         return v == null || v.isBlank() ? List.of() : List.of(v.trim().split("\\s+"));
     }
 
-    /**
-     * Whether student code runs behind the process boundary (the default; grader/README.md "The
-     * process boundary"): the tests and renders run in trusted JVMs whose stand-ins call the
-     * student process. The system property {@code raylab.grade.boundary=false} selects the older
-     * path (student code in the test and render JVMs), kept only to compare the two: it does not
-     * keep secrets from student code.
-     */
-    static boolean processBoundary() {
-        return !"false".equalsIgnoreCase(System.getProperty("raylab.grade.boundary", "true"));
-    }
-
     private final Options options;
     private final Consumer<String> log;
     private List<Assignment> allAssignments = List.of();
@@ -169,20 +158,18 @@ public final class Grader {
                 references.put(sc.reference(), ref == null ? null : Files.readAllBytes(ref));
             }
         }
-        // Variants of the graded scenes. Behind the boundary their references come from the
-        // grader's render (the first round of each band traces with the reference only), else
-        // they are rendered here by the reference solution.
+        // Variants of the graded scenes. Their references come from the grader's render (the first
+        // round of each band traces with the reference only).
         notes.add(GradeReport.SEED_NOTE + seed + " (grade with --seed " + seed + " to grade the same variants again)");
         long v0 = System.nanoTime();
-        for (GradedScenes.Graded g : GradedScenes.forGrading(root, selected, seed, !processBoundary())) {
+        for (GradedScenes.Graded g : GradedScenes.forGrading(root, selected, seed, false)) {
             graded.put(g.scene().scene(), g);
             if (!g.note().isEmpty()) {
                 notes.add(g.note());
             }
         }
         if (TIMES) {
-            System.err.printf("variants%s %.1f s%n", processBoundary() ? "" : " and their references",
-                    (System.nanoTime() - v0) / 1e9);
+            System.err.printf("variants %.1f s%n", (System.nanoTime() - v0) / 1e9);
         }
 
         Submission read;
@@ -375,9 +362,6 @@ public final class Grader {
         // so that nothing the visible JVM prints can hold hidden data.
         List<TestResult> expected = setup.expected.get(a.id());
         Map<String, TestResult> got = new LinkedHashMap<>();
-        List<Path> layers = new ArrayList<>();
-        layers.add(overlay);
-        layers.addAll(below);
         List<String> classes = setup.testClasses.get(a.id());
         List<String> visibleClasses = classes.stream().filter(c -> kindOf(a, c) == Kind.VISIBLE
                 || c.equals(DataCases.visibleClassName(a.id()))).toList();
@@ -387,33 +371,20 @@ public final class Grader {
         List<Path> trusted = new ArrayList<>();
         trusted.add(setup.standIns.get(a.id()));
         trusted.addAll(below);
-        boolean boundary = processBoundary();
-        Renders renders = null;
-        if (boundary) {
-            long t0 = System.nanoTime();
-            renders = a.scenes().isEmpty() ? null : new Renders();
-            runTests(a, visibleClasses, hiddenClasses, expected, trusted, overlay, setup, mdir, sandbox, got, notes,
-                    renders, scenesCopy);
-            if (TIMES) {
-                System.err.printf("%s visible and hidden%s %.1f s%n", a.id(), renders != null && renders.done
-                        ? " tests and the scenes" : "", (System.nanoTime() - t0) / 1e9);
-            }
-        } else {
-            long t0 = System.nanoTime();
-            runTestsInBox(a, false, visibleClasses, expected, layers, setup, mdir, sandbox, got, notes);
-            long t1 = System.nanoTime();
-            runTestsInBox(a, true, hiddenClasses, expected, layers, setup, mdir, sandbox, got, notes);
-            if (TIMES) {
-                System.err.printf("%s visible %.1f s hidden %.1f s%n", a.id(), (t1 - t0) / 1e9, (System.nanoTime() - t1) / 1e9);
-            }
+        long t0 = System.nanoTime();
+        Renders renders = a.scenes().isEmpty() ? null : new Renders();
+        runTests(a, visibleClasses, hiddenClasses, expected, trusted, overlay, setup, mdir, sandbox, got, notes,
+                renders, scenesCopy);
+        if (TIMES) {
+            System.err.printf("%s visible and hidden%s %.1f s%n", a.id(), renders != null && renders.done
+                    ? " tests and the scenes" : "", (System.nanoTime() - t0) / 1e9);
         }
         tests.addAll(scoreTests(a, setup, plan(a), expected, got));
         // Scenes.
         long s0 = System.nanoTime();
         tests.addAll(renders != null && renders.done ? scoreScenes(a, renders.images, renders.errors, renders.late,
                 renders.references, renders.pixels, renders.timedOut, false, renders.millis, options.sceneLimit().multipliedBy(a.scenes().size()))
-                : boundary ? gradeScenes(a, trusted, overlay, setup, mdir, scenesCopy, sandbox)
-                : gradeScenesInBox(a, layers, setup, mdir, scenesCopy, sandbox));
+                : gradeScenes(a, trusted, overlay, setup, mdir, scenesCopy, sandbox));
         if (TIMES) {
             System.err.printf("%s scenes %.1f s%n", a.id(), (System.nanoTime() - s0) / 1e9);
         }
@@ -468,8 +439,7 @@ public final class Grader {
             for (Path p : (Iterable<Path>) s.filter(f -> f.toString().endsWith(".class"))::iterator) {
                 String rel = setup.tests.relativize(p).toString().replace('\\', '/');
                 String outer = GraderSetup.outer(rel.substring(0, rel.length() - 6).replace('/', '.'));
-                boolean isHidden = hiddenClasses.contains(outer)
-                        || (outer.startsWith("raylab.hidden.") && !outer.startsWith("raylab.hidden.RenderMany"));
+                boolean isHidden = hiddenClasses.contains(outer) || outer.startsWith("raylab.hidden.");
                 java.util.Set<String> strings = ClassStrings.of(Files.readAllBytes(p));
                 if (isHidden) {
                     hidden.addAll(strings);
@@ -491,13 +461,6 @@ public final class Grader {
             }
         }
         return out;
-    }
-
-    /** Every test class name of every milestone (outer names). */
-    private static java.util.Set<String> allTestClasses(GraderSetup setup) {
-        java.util.Set<String> all = new java.util.HashSet<>();
-        setup.testClasses.values().forEach(all::addAll);
-        return all;
     }
 
     /** Libraries a test JVM needs (JUnit and Jackson); a render JVM takes all but Maven's. */
@@ -691,56 +654,6 @@ public final class Grader {
         final List<byte[]> references = new ArrayList<>();
         /** Per scene the graded feedback's worst pixels (raylab.inspect.WorstPixels JSON), or null. */
         final List<String> pixels = new ArrayList<>();
-    }
-
-    /** Runs some of M's test classes in one child JVM in its own box; the results go into {@code got}. */
-    private void runTestsInBox(Assignment a, boolean hidden, List<String> classes, List<TestResult> allExpected,
-            List<Path> layers, GraderSetup setup, Path mdir, Sandbox sandbox, Map<String, TestResult> got,
-            List<String> notes) throws IOException {
-        java.util.Set<String> mine = new java.util.HashSet<>(classes);
-        List<TestResult> expected = allExpected.stream().filter(e -> mine.contains(GraderSetup.outer(e.className())))
-                .toList();
-        if (expected.isEmpty()) {
-            return;
-        }
-        java.util.Set<String> anyTest = allTestClasses(setup);
-        Path root = options.root().toAbsolutePath();
-        List<Path> cp = new ArrayList<>();
-        cp.add(setup.tests); // the grader's tests first: nothing the student wrote can replace them
-        cp.addAll(layers);
-        Sandbox.Box box = sandbox.box(mdir, cp, (entry, rel) -> {
-            if (setup.libraries.contains(entry)) {
-                return libraryFor(entry, false);
-            }
-            if (!entry.equals(setup.tests) || !rel.endsWith(".class")) {
-                return true;
-            }
-            String outer = GraderSetup.outer(rel.substring(0, rel.length() - 6).replace('/', '.'));
-            if (mine.contains(outer)) {
-                return true;
-            }
-            if (anyTest.contains(outer) || outer.startsWith("raylab.hidden.RenderMany")) {
-                return false; // other milestones' tests; the grader's render helper
-            }
-            // Helpers: the hidden JVM gets all; the visible one only the student-facing ones.
-            return hidden || outer.equals("raylab.cases.CaseCheck")
-                    || Files.isRegularFile(root.resolve("src/test/java/" + outer.replace('.', '/') + ".java"));
-        });
-        try {
-            TestLauncher.Outcome o = TestLauncher.run(box.classPath().stream().map(Path::of).toList(),
-                    Path.of(box.classPath().get(0)), List.of(), classes, options.limits(), box.run(), expected,
-                    box.wrapper());
-            for (TestResult r : o.results()) {
-                got.put(r.id(), r);
-            }
-            if (!o.finished() && !o.problem().isEmpty()) {
-                // What went wrong in the hidden run is named on the hidden tests only (their visibility).
-                notes.add(hidden ? "the hidden tests' run did not finish (see the hidden tests)"
-                        : "the test run did not finish: " + o.problem());
-            }
-        } finally {
-            sandbox.finish(box, null);
-        }
     }
 
     private void copyOtherReferences(Assignment a, GraderSetup setup, Path out) throws IOException {
@@ -1146,133 +1059,6 @@ public final class Grader {
                     shown = new GradeReport.Images(mine, refBytes, png(c.diff()), metric,
                             passed ? "" : PixelFeedback.valid(pixels.get(i)));
                     msg += passed ? "" : PixelFeedback.summaryLine(shown.pixels());
-                } catch (IOException | RuntimeException e) {
-                    msg = "the rendered image could not be compared: " + e.getMessage();
-                    shown = new GradeReport.Images(null, refBytes, null, "");
-                }
-            }
-            out.add(new GradeReport.Test(a.id(), name, Kind.SCENE, sc.points(), passed ? sc.points() : 0, passed, msg,
-                    "", "visible", ms, sc.scene(), shown));
-        }
-        return out;
-    }
-
-    /** Renders the milestone's scenes in one child JVM (in its own box) and compares each with its reference. */
-    private List<GradeReport.Test> gradeScenesInBox(Assignment a, List<Path> layers, GraderSetup setup, Path mdir,
-            Path scenesCopy, Sandbox sandbox) throws IOException {
-        List<GradeReport.Test> out = new ArrayList<>();
-        if (a.scenes().isEmpty()) {
-            return out;
-        }
-        Path root = options.root().toAbsolutePath();
-        List<Path> cp = new ArrayList<>();
-        cp.add(setup.tests);
-        cp.addAll(layers);
-        Sandbox.Box box = sandbox.box(mdir, cp, (entry, rel) -> {
-            if (setup.libraries.contains(entry)) {
-                return libraryFor(entry, true);
-            }
-            // Of the grader's tests only the render helper: no test data in the render JVM.
-            return !entry.equals(setup.tests) || rel.startsWith("raylab/hidden/RenderMany");
-        });
-        Path scenes = box.run().resolve("scenes");
-        copyScenes(scenesCopy, scenes);
-        Duration limit = options.sceneLimit().multipliedBy(a.scenes().size());
-        // The sandbox stops the renders at the limit itself and still hands back the images made.
-        List<String> cmd = new ArrayList<>(box.wrapper(limit));
-        cmd.addAll(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
-                "-Xmx" + options.sceneHeapMb() + "m", "-XX:+ExitOnOutOfMemoryError", "-Djava.awt.headless=true", "-XX:+DisableAttachMechanism",
-                "-XX:-UsePerfData", "--limit-modules", TestLauncher.CHILD_MODULES, "-cp",
-                String.join(java.io.File.pathSeparator, box.classPath()), "raylab.hidden.RenderMany"));
-        List<Path> pngs = new ArrayList<>();
-        for (int i = 0; i < a.scenes().size(); i++) {
-            Assignment.GradedScene sc = a.scenes().get(i);
-            Path scene = scenes.resolve(root.resolve("scenes").relativize(root.resolve(sc.scene())).toString());
-            Path png = box.run().resolve("scene" + i + ".png");
-            if (graded.containsKey(sc.scene()) && graded.get(sc.scene()).varied()) {
-                Files.writeString(scene, graded.get(sc.scene()).json()); // the variant in place of the published scene
-            }
-            cmd.add(box.inChild(scene));
-            cmd.add(box.inChild(png));
-            pngs.add(png);
-        }
-        long t0 = System.nanoTime();
-        boolean timedOut = false;
-        List<byte[]> images = new ArrayList<>();
-        List<String> errors = new ArrayList<>();
-        Process p = null;
-        try {
-            ProcessBuilder pb = new ProcessBuilder(cmd).directory(box.run().toFile())
-                    .redirectOutput(ProcessBuilder.Redirect.DISCARD).redirectError(ProcessBuilder.Redirect.DISCARD);
-            p = pb.start();
-            p.getOutputStream().close();
-            try {
-                if (!p.waitFor(limit.toMillis() + 5_000, java.util.concurrent.TimeUnit.MILLISECONDS)
-                        || p.exitValue() == Sandbox.DEADLINE_STATUS) {
-                    timedOut = true;
-                }
-            } catch (InterruptedException e) {
-                Thread.currentThread().interrupt();
-                timedOut = true;
-            }
-            p.descendants().forEach(ProcessHandle::destroyForcibly);
-            p.destroyForcibly();
-            try {
-                p.waitFor(5, java.util.concurrent.TimeUnit.SECONDS);
-            } catch (InterruptedException e) {
-                Thread.currentThread().interrupt();
-            }
-            // Read what the child left only once it is gone, capped in size, not following links.
-            for (Path png : pngs) {
-                images.add(readCapped(png, 64L << 20));
-                byte[] err = readCapped(Path.of(png + ".err"), 64 * 1024);
-                errors.add(err == null ? null : GraderSetup.firstLine(new String(err,
-                        java.nio.charset.StandardCharsets.UTF_8)).replaceFirst("^raylab: ", ""));
-            }
-        } finally {
-            sandbox.finish(box, p);
-        }
-        long ms = (System.nanoTime() - t0) / 1_000_000 / a.scenes().size();
-        // -XX:+ExitOnOutOfMemoryError ends the JVM with status 3 when the heap runs out.
-        boolean outOfMemory = p != null && !timedOut && !p.isAlive() && p.exitValue() == 3;
-        List<String> studentFiles = a.files().stream().map(Assignment.StudentFile::path).toList();
-        for (int i = 0; i < a.scenes().size(); i++) {
-            Assignment.GradedScene sc = a.scenes().get(i);
-            String name = sc.scene();
-            GradedScenes.Graded g = graded.get(sc.scene());
-            byte[] refBytes = g != null && g.varied() ? g.reference() : references.get(sc.reference());
-            byte[] mine = images.get(i);
-            String errLine = errors.get(i) == null ? "" : errors.get(i);
-            String msg;
-            GradeReport.Images shown = null;
-            boolean passed = false;
-            if (refBytes == null) {
-                msg = "grader setup problem: no reference image " + sc.reference();
-            } else if (mine == null || errors.get(i) != null) {
-                msg = !errLine.isEmpty() ? raylab.course.Explain.renderFailure(errLine, studentFiles)
-                        : outOfMemory ? "the render ran out of memory (" + options.sceneHeapMb()
-                                + " MB): look for something that grows with every ray, such as a list or an array"
-                                + " allocated per hit and kept"
-                        : timedOut ? "the renders took longer than " + limit.toSeconds()
-                                + " s and were stopped (an endless loop, or far too slow?)"
-                        : "no image was rendered (the render JVM ended early: System.exit or a crash)";
-                shown = new GradeReport.Images(null, refBytes, null, "");
-            } else {
-                try {
-                    BufferedImage img = ImageIO.read(new java.io.ByteArrayInputStream(mine));
-                    BufferedImage ref = ImageIO.read(new java.io.ByteArrayInputStream(refBytes));
-                    if (img == null) {
-                        throw new IOException("not a PNG image");
-                    }
-                    ImageCompare.Result c = ImageCompare.compare(img, ref);
-                    passed = c.matches(sc.tolerance());
-                    String metric = c.summary() + "; allowed: " + String.format(java.util.Locale.ROOT, "%.3f%%",
-                            100 * sc.tolerance());
-                    msg = passed ? "" : "the image differs from the reference: " + metric
-                            + " (your render, the reference and the difference are shown side by side)"
-                            + (g != null && g.varied() ? "; this grading renders a variant of the scene (camera,"
-                                    + " lights and placement moved); ./raylab check compares the published one" : "");
-                    shown = new GradeReport.Images(mine, refBytes, png(c.diff()), metric);
                 } catch (IOException | RuntimeException e) {
                     msg = "the rendered image could not be compared: " + e.getMessage();
                     shown = new GradeReport.Images(null, refBytes, null, "");

@@ -266,10 +266,6 @@ final class GraderSetup {
                 testSources.add(f);
             }
         }
-        Path renderMany = root.resolve("grader/tests/raylab/hidden/RenderMany.java");
-        if (Files.isRegularFile(renderMany)) {
-            testSources.add(renderMany);
-        }
         // The student-facing assertion helpers are compiled here too, so that a copy compiled
         // elsewhere (target/test-classes) is never needed at run time.
         for (Path helper : JavaBuild.sourcesUnder(root.resolve("src/test/java/raylab/testing"))) {
