@@ -335,7 +335,7 @@ public final class MilestoneCheck {
             List<Path> compiled = new ArrayList<>(testDirs);
             compiled.add(helpers);
             List<TestResult> expected = BuildCache.discover(cp, classes, runDir, compiled, work.resolve("discovered.json"));
-            TestLauncher.Outcome o = TestLauncher.run(cp, null, List.of(), classes, TestLauncher.Limits.DEFAULT,
+            TestLauncher.Run o = TestLauncher.run(cp, null, List.of(), classes, TestLauncher.Limits.DEFAULT,
                     runDir, expected);
             for (TestResult t : o.results()) {
                 String c = t.className();

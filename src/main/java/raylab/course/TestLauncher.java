@@ -42,7 +42,7 @@ public final class TestLauncher {
      * @param finished whether the child reached the end of its run
      * @param problem  why it did not (timed out, exited early...), empty if it did
      */
-    public record Outcome(List<TestResult> results, boolean finished, String problem) {
+    public record Run(List<TestResult> results, boolean finished, String problem) {
         public long passed() {
             return results.stream().filter(r -> r.status().passed()).count();
         }
@@ -64,7 +64,7 @@ public final class TestLauncher {
      */
     public static List<TestResult> discover(List<Path> classPath, Path testClasses, List<String> tags,
             List<String> classes, Path workDir) throws IOException {
-        Outcome o = launch(classPath, testClasses, tags, classes, Limits.DEFAULT, workDir, true, List.of(), List.of(), List.of());
+        Run o = launch(classPath, testClasses, tags, classes, Limits.DEFAULT, workDir, true, List.of(), List.of(), List.of());
         if (!o.finished()) {
             throw new IOException("test discovery failed: " + o.problem());
         }
@@ -96,7 +96,7 @@ public final class TestLauncher {
         return THEN_RENDER + config + "\0" + list + "\0" + seconds;
     }
 
-    public static Outcome run(List<Path> classPath, Path testClasses, List<String> tags, List<String> classes,
+    public static Run run(List<Path> classPath, Path testClasses, List<String> tags, List<String> classes,
             Limits limits, Path workDir, List<TestResult> expected) throws IOException {
         return launch(classPath, testClasses, tags, classes, limits, workDir, false, expected, List.of(), List.of());
     }
@@ -105,7 +105,7 @@ public final class TestLauncher {
      * As {@link #run}, with the child's command line prefixed by {@code wrapper} (for example
      * {@code setpriv --reuid=... --} to run it as an unprivileged user); empty for none.
      */
-    public static Outcome run(List<Path> classPath, Path testClasses, List<String> tags, List<String> classes,
+    public static Run run(List<Path> classPath, Path testClasses, List<String> tags, List<String> classes,
             Limits limits, Path workDir, List<TestResult> expected, List<String> wrapper) throws IOException {
         return launch(classPath, testClasses, tags, classes, limits, workDir, false, expected, wrapper, List.of());
     }
@@ -114,7 +114,7 @@ public final class TestLauncher {
      * As {@link #run}, with more options for the child JVM ({@code -Dname=value}), for example the
      * student process of the grader's process ({@code raylab.boundary}).
      */
-    public static Outcome run(List<Path> classPath, Path testClasses, List<String> tags, List<String> classes,
+    public static Run run(List<Path> classPath, Path testClasses, List<String> tags, List<String> classes,
             Limits limits, Path workDir, List<TestResult> expected, List<String> wrapper, List<String> jvmOptions)
             throws IOException {
         return launch(classPath, testClasses, tags, classes, limits, workDir, false, expected, wrapper, jvmOptions,
@@ -132,7 +132,7 @@ public final class TestLauncher {
      * {@link #GUARD_FACTOR} × {@code limits.wallClock()}: when it fires, the tests not reported
      * fail as a grading failure ({@link TestResult#GRADING_FAILED}), not as the student's.
      */
-    public static Outcome runTrusted(List<Path> classPath, Path testClasses, List<String> classes, Limits limits,
+    public static Run runTrusted(List<Path> classPath, Path testClasses, List<String> classes, Limits limits,
             Path workDir, List<TestResult> expected, List<String> jvmOptions) throws IOException {
         Limits guard = new Limits(limits.heapMegabytes(), limits.wallClock().multipliedBy(GUARD_FACTOR),
                 limits.perTestSeconds(), limits.outputCapBytes());
@@ -143,21 +143,21 @@ public final class TestLauncher {
     /** How much longer than its limits the wall clock of a trusted JVM runs ({@link #runTrusted}). */
     public static final int GUARD_FACTOR = 3;
 
-    private static Outcome launch(List<Path> classPath, Path testClasses, List<String> tags, List<String> classes,
+    private static Run launch(List<Path> classPath, Path testClasses, List<String> tags, List<String> classes,
             Limits limits, Path workDir, boolean list, List<TestResult> expected, List<String> wrapper,
             List<String> jvmOptions) throws IOException {
         return launch(classPath, testClasses, tags, classes, limits, workDir, list, expected, wrapper, jvmOptions,
                 true);
     }
 
-    private static Outcome launch(List<Path> classPath, Path testClasses, List<String> tags, List<String> classes,
+    private static Run launch(List<Path> classPath, Path testClasses, List<String> tags, List<String> classes,
             Limits limits, Path workDir, boolean list, List<TestResult> expected, List<String> wrapper,
             List<String> jvmOptions, boolean limitModules) throws IOException {
         return launch(classPath, testClasses, tags, classes, limits, workDir, list, expected, wrapper, jvmOptions,
                 limitModules, false);
     }
 
-    private static Outcome launch(List<Path> classPath, Path testClasses, List<String> tags, List<String> classes,
+    private static Run launch(List<Path> classPath, Path testClasses, List<String> tags, List<String> classes,
             Limits limits, Path workDir, boolean list, List<TestResult> expected, List<String> wrapper,
             List<String> jvmOptions, boolean limitModules, boolean wallIsGuard) throws IOException {
         String java = Path.of(System.getProperty("java.home"), "bin", "java").toString();
@@ -270,7 +270,7 @@ public final class TestLauncher {
                 out.add(r);
             }
             out.addAll(results.values()); // reported but not expected: kept for the record
-            return new Outcome(out, ended[0] && exited, problem);
+            return new Run(out, ended[0] && exited, problem);
         }
     }
 

@@ -139,8 +139,8 @@ public final class GradeCommand implements Callable<Integer> {
         });
     }
 
-    private static Sandbox.Mode mode(String s) {
-        for (Sandbox.Mode m : Sandbox.Mode.values()) {
+    private static Sandbox.Isolation mode(String s) {
+        for (Sandbox.Isolation m : Sandbox.Isolation.values()) {
             if (m.name().equalsIgnoreCase(s)) {
                 return m;
             }

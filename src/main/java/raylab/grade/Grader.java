@@ -23,6 +23,7 @@ import raylab.course.Assignments;
 import raylab.course.GradingPlan;
 import raylab.course.JavaBuild;
 import raylab.course.MilestoneBuild;
+import raylab.course.Submission;
 import raylab.course.TestLauncher;
 import raylab.course.TestResult;
 import raylab.grade.GradeReport.Kind;
@@ -50,15 +51,15 @@ public final class Grader {
      * @param parallel    milestones graded at the same time
      */
     public record Options(Path root, List<String> milestones, TestLauncher.Limits limits, Duration sceneLimit,
-            int sceneHeapMb, Path cacheDir, String sandboxUser, int parallel, Sandbox.Mode sandboxMode) {
+            int sceneHeapMb, Path cacheDir, String sandboxUser, int parallel, Sandbox.Isolation sandboxMode) {
         public Options(Path root, List<String> milestones, TestLauncher.Limits limits, Duration sceneLimit,
                 int sceneHeapMb, Path cacheDir, String sandboxUser, int parallel) {
-            this(root, milestones, limits, sceneLimit, sceneHeapMb, cacheDir, sandboxUser, parallel, Sandbox.Mode.AUTO);
+            this(root, milestones, limits, sceneLimit, sceneHeapMb, cacheDir, sandboxUser, parallel, Sandbox.Isolation.AUTO);
         }
 
-        public Options withSandboxMode(Sandbox.Mode m) {
+        public Options withSandboxMode(Sandbox.Isolation m) {
             return new Options(root, milestones, limits, sceneLimit, sceneHeapMb, cacheDir, sandboxUser, parallel,
-                    m == null ? Sandbox.Mode.AUTO : m);
+                    m == null ? Sandbox.Isolation.AUTO : m);
         }
 
         public static Options defaults(Path root) {
@@ -148,7 +149,7 @@ public final class Grader {
             System.err.printf("setup %.1f s%n", (System.nanoTime() - t0) / 1e9);
         }
         // Mode none: children could write the cache; it is checked against this manifest at the end.
-        CacheManifest.Guard cacheGuard = sandbox.mode() == Sandbox.Mode.NONE ? CacheManifest.guard(setup.dir) : null;
+        CacheManifest.Guard cacheGuard = sandbox.mode() == Sandbox.Isolation.NONE ? CacheManifest.guard(setup.dir) : null;
         this.allAssignments = all.all();
         this.hiddenTexts = hiddenTexts(setup, all.all());
         // Every reference image is read before any student code runs.
@@ -189,14 +190,14 @@ public final class Grader {
         Path workParent = options.cacheDir().toAbsolutePath().resolve("work");
         Files.createDirectories(workParent);
         // Without a sandbox the child could walk up from its folder: then the system's temporary folder.
-        Path work = sandbox.mode() != Sandbox.Mode.NONE && traversableByAll(workParent)
+        Path work = sandbox.mode() != Sandbox.Isolation.NONE && traversableByAll(workParent)
                 ? Files.createTempDirectory(workParent, "grade")
                 : Files.createTempDirectory("raylab-grade");
         Sandbox.workFolder(work);
         Map<String, GradeReport.Milestone> results = new LinkedHashMap<>();
         // Side by side only when each child has its own namespaces: otherwise one milestone's child
         // could see another's (its command line in /proc names its box).
-        ExecutorService pool = Executors.newFixedThreadPool(sandbox.mode() == Sandbox.Mode.NAMESPACE
+        ExecutorService pool = Executors.newFixedThreadPool(sandbox.mode() == Sandbox.Isolation.NAMESPACE
                 ? Math.max(1, options.parallel()) : 1);
         try {
             // The scenes without their reference images: student code cannot copy a reference.
@@ -584,7 +585,7 @@ public final class Grader {
                     .plusSeconds(renders == null ? 0 : 30), l.perTestSeconds(), l.outputCapBytes());
             jvm.addAll(JvmOptions.trusted(both.heapMegabytes()));
             jvm.addAll(extraJvmOptions("RAYLAB_TRUSTED_JVM_OPTS"));
-            TestLauncher.Outcome o = TestLauncher.runTrusted(cp, setup.tests, classes, both, dir, expected, jvm);
+            TestLauncher.Run o = TestLauncher.runTrusted(cp, setup.tests, classes, both, dir, expected, jvm);
             for (TestResult r : o.results()) {
                 got.put(r.id(), r);
             }

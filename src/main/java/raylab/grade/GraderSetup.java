@@ -283,7 +283,7 @@ final class GraderSetup {
         cp.add(t.tests);
         cp.addAll(GraderSetup.ownClassPath());
         List<String> all = classesOf.values().stream().flatMap(List::stream).toList();
-        TestLauncher.Outcome o = TestLauncher.run(cp, t.tests, List.of(), all,
+        TestLauncher.Run o = TestLauncher.run(cp, t.tests, List.of(), all,
                 new TestLauncher.Limits(1024, Duration.ofMinutes(10), 120, 4096), work, List.of());
         if (!o.finished()) {
             throw new IOException("running the tests on the reference failed: " + o.problem());

@@ -648,7 +648,7 @@ public final class ReleaseVerifier {
     private List<TestResult> runTests(Path overlay, String what) throws IOException {
         Path dir = work.resolve("runs").resolve(what);
         Files.createDirectories(dir);
-        TestLauncher.Outcome o = TestLauncher.run(cp(overlay, mainClasses, testClasses), testClasses, List.of(),
+        TestLauncher.Run o = TestLauncher.run(cp(overlay, mainClasses, testClasses), testClasses, List.of(),
                 List.of(), TestLauncher.Limits.DEFAULT, dir, expected);
         return o.results();
     }
