@@ -4,7 +4,6 @@ import java.io.BufferedInputStream;
 import java.io.BufferedOutputStream;
 import java.io.ByteArrayOutputStream;
 import java.io.DataInputStream;
-import java.io.EOFException;
 import java.io.File;
 import java.io.IOException;
 import java.io.InputStream;
@@ -24,6 +23,7 @@ import java.util.Map;
 import java.util.Set;
 import java.util.function.Consumer;
 
+import raylab.course.JavaBuild;
 import raylab.light.PointLight;
 import raylab.material.Material;
 import raylab.math.Color;
@@ -1359,7 +1359,7 @@ public final class StudentProcess implements AutoCloseable {
      */
     public static List<String> javaCommand(List<Path> classPath, int heapMb, List<String> studentClasses) {
         List<String> cmd = new ArrayList<>(StudentServer.CHANNEL_WRAPPER);
-        cmd.addAll(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
+        cmd.addAll(List.of(JavaBuild.javaExecutable(),
                 StudentServer.CHANNEL_JVM_OPTION, "-Xmx" + heapMb + "m", "-XX:+ExitOnOutOfMemoryError", "-Djava.awt.headless=true",
                 "-XX:+DisableAttachMechanism", "-XX:-UsePerfData", "-XX:TieredStopAtLevel=4", "-Xss4m",
                 "-cp", String.join(File.pathSeparator, classPath.stream().map(Path::toString).toList()),

@@ -160,7 +160,7 @@ public final class TestLauncher {
     private static Run launch(List<Path> classPath, Path testClasses, List<String> tags, List<String> classes,
             Limits limits, Path workDir, boolean list, List<TestResult> expected, List<String> wrapper,
             List<String> jvmOptions, boolean limitModules, boolean wallIsGuard) throws IOException {
-        String java = Path.of(System.getProperty("java.home"), "bin", "java").toString();
+        String java = JavaBuild.javaExecutable();
         List<String> cmd = new ArrayList<>(wrapper);
         cmd.add(java);
         cmd.addAll(List.of("-Xmx" + limits.heapMegabytes() + "m", "-Xss1m",

@@ -20,6 +20,7 @@ import picocli.CommandLine.Model.CommandSpec;
 import raylab.cli.UserError;
 import raylab.course.Assignment;
 import raylab.course.Assignments;
+import raylab.course.JavaBuild;
 
 /**
  * {@code raylab bundle TARGET --out PATH}: what a grading platform needs.
@@ -249,7 +250,7 @@ public final class BundleCommand implements Callable<Integer> {
                         + " (above): nothing was written to " + out, 1);
             }
         } finally {
-            GraderSetup.deleteTree(staged);
+            JavaBuild.deleteTreeQuietly(staged);
         }
     }
 

@@ -16,6 +16,7 @@ import java.util.stream.Stream;
 import picocli.CommandLine.Command;
 import picocli.CommandLine.Option;
 import picocli.CommandLine.Parameters;
+import raylab.course.JavaBuild;
 import raylab.course.TestLauncher;
 
 /** {@code raylab grade SUBMISSION --out DIR}: the autograder (instructor tree only). */
@@ -291,7 +292,7 @@ public final class GradeCommand implements Callable<Integer> {
             if (!before.contains(name)) {
                 Path p = out.resolve(name);
                 System.err.println("raylab: removing " + p + ", which appeared during grading (not written by the grader)");
-                GraderSetup.deleteTree(p);
+                JavaBuild.deleteTreeQuietly(p);
             }
         }
     }

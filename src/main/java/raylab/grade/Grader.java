@@ -217,7 +217,7 @@ public final class Grader {
             }
         } finally {
             pool.shutdownNow();
-            GraderSetup.deleteTree(work);
+            JavaBuild.deleteTreeQuietly(work);
             if (cacheGuard != null) {
                 cacheGuard.check().ifPresent(notes::add);
             }
@@ -499,7 +499,7 @@ public final class Grader {
         // The protocol on file descriptors of its own: the JVM's output and the student's raw
         // writes to 1 and 2 go to the stderr file (StudentServer.CHANNEL_WRAPPER).
         cmd.addAll(raylab.remote.StudentServer.CHANNEL_WRAPPER);
-        cmd.addAll(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
+        cmd.addAll(List.of(JavaBuild.javaExecutable(),
                 raylab.remote.StudentServer.CHANNEL_JVM_OPTION, "-Xmx" + heapMb + "m",
                 "-Xss4m", "-XX:+UseSerialGC", "-XX:+ExitOnOutOfMemoryError", "-Djava.awt.headless=true",
                 "-XX:+DisableAttachMechanism", "-XX:-UsePerfData", "--limit-modules", TestLauncher.CHILD_MODULES,
@@ -619,7 +619,7 @@ public final class Grader {
             for (Sandbox.Box box : boxes) {
                 sandbox.finish(box, null);
             }
-            GraderSetup.deleteTree(dir);
+            JavaBuild.deleteTreeQuietly(dir);
         }
     }
 
@@ -946,7 +946,7 @@ public final class Grader {
         Path config = dir.resolve("student.properties");
         raylab.boundary.Remote.writeConfig(config, studentConfig(a, box, overlay, options.sceneLimit().toMillis(),
                 options.sceneHeapMb()));
-        List<String> cmd = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
+        List<String> cmd = new ArrayList<>(List.of(JavaBuild.javaExecutable(),
                 "-Xmx" + options.sceneHeapMb() + "m", "-XX:+ExitOnOutOfMemoryError", "-Djava.awt.headless=true",
                 // Grader code only: every module (--limit-modules would turn class data sharing off).
                 "-XX:+DisableAttachMechanism", "-XX:-UsePerfData",
@@ -1001,7 +1001,7 @@ public final class Grader {
                 p.destroyForcibly();
             }
             sandbox.finish(box, null);
-            GraderSetup.deleteTree(dir);
+            JavaBuild.deleteTreeQuietly(dir);
         }
         long ms = (System.nanoTime() - t0) / 1_000_000 / a.scenes().size();
         // -XX:+ExitOnOutOfMemoryError ends the JVM with status 3 when the heap runs out.
@@ -1101,11 +1101,11 @@ public final class Grader {
                 MilestoneBuild.RenderOutcome o = MilestoneBuild.renderInChild(GraderSetup.ownClassPath(),
                         root.resolve(sc.scene()), out, Duration.ofMinutes(5), 1024, tmp);
                 if (o.exitStatus() != 0 || !Files.isRegularFile(out)) {
-                    GraderSetup.deleteTree(tmp);
+                    JavaBuild.deleteTreeQuietly(tmp);
                     return null;
                 }
                 Files.move(out, cached, java.nio.file.StandardCopyOption.REPLACE_EXISTING);
-                GraderSetup.deleteTree(tmp);
+                JavaBuild.deleteTreeQuietly(tmp);
             }
         }
         return cached;

@@ -14,6 +14,8 @@ import java.util.concurrent.TimeUnit;
 import java.util.function.Consumer;
 import java.util.stream.Stream;
 
+import raylab.course.JavaBuild;
+
 /**
  * Where and as whom student code runs. Every child JVM that runs student code gets a private
  * folder, a {@link Box}: {@code cp/} holds read-only copies (or hard links) of exactly the class
@@ -565,9 +567,9 @@ final class Sandbox {
             }
             b.slot().release();
         }
-        GraderSetup.deleteTree(b.dir());
+        JavaBuild.deleteTreeQuietly(b.dir());
         Path rootDir = b.dir().resolveSibling(b.dir().getFileName() + "-root");
-        GraderSetup.deleteTree(rootDir);
+        JavaBuild.deleteTreeQuietly(rootDir);
         try {
             Files.deleteIfExists(Path.of(rootDir + ".deadline"));
         } catch (IOException e) {

@@ -11,6 +11,7 @@ import picocli.CommandLine.Model.CommandSpec;
 import picocli.CommandLine.Option;
 import picocli.CommandLine.Spec;
 import raylab.cli.UserError;
+import raylab.course.JavaBuild;
 
 /**
  * {@code raylab release --out DIR}: writes the student starter and verifies it (instructor-only:
@@ -88,7 +89,7 @@ public final class ReleaseCommand implements Callable<Integer> {
             w.flush();
             return report.passed() ? 0 : 1;
         } finally {
-            Release.deleteTree(work);
+            JavaBuild.deleteTree(work);
         }
     }
 }
