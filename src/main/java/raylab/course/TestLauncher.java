@@ -40,9 +40,13 @@ public final class TestLauncher {
      *
      * @param results  one result per test reported or expected, in order
      * @param finished whether the child reached the end of its run
-     * @param problem  why it did not (timed out, exited early...), empty if it did
+     * @param problem  why it did not (timed out, exited early...), empty if it did: for people
+     *                 to read; code asks {@code timedOut} and {@code cutOff}
+     * @param timedOut whether the run was stopped at its wall-clock limit
+     * @param cutOff   the id of the test that was running when the run stopped (its result says
+     *                 so in its message), or null
      */
-    public record Run(List<TestResult> results, boolean finished, String problem) {
+    public record Run(List<TestResult> results, boolean finished, String problem, boolean timedOut, String cutOff) {
         public long passed() {
             return results.stream().filter(r -> r.status().passed()).count();
         }
@@ -247,6 +251,7 @@ public final class TestLauncher {
                 problem = String.join("; ", containerFailures);
             }
             List<TestResult> out = new ArrayList<>();
+            String cutOff = null;
             for (TestResult e : expected) {
                 TestResult r = results.remove(e.id());
                 if (r == null) {
@@ -259,6 +264,7 @@ public final class TestLauncher {
                     } else if (e.id().equals(current[0])) {
                         s = exited ? TestResult.Status.CRASHED : TestResult.Status.TIMED_OUT;
                         why = "this test was running when " + (problem.isEmpty() ? "the run stopped" : problem);
+                        cutOff = e.id();
                     } else {
                         s = TestResult.Status.MISSING;
                         why = "no result was reported for this test"
@@ -270,7 +276,7 @@ public final class TestLauncher {
                 out.add(r);
             }
             out.addAll(results.values()); // reported but not expected: kept for the record
-            return new Run(out, ended[0] && exited, problem);
+            return new Run(out, ended[0] && exited, problem, !exited, cutOff);
         }
     }
 

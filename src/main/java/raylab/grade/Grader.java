@@ -590,11 +590,11 @@ public final class Grader {
                 got.put(r.id(), r);
             }
             boolean allReported = expected.stream().map(e -> got.get(e.id())).allMatch(r -> r != null
-                    && r.status() != TestResult.Status.MISSING && !r.message().startsWith("this test was running when"));
+                    && r.status() != TestResult.Status.MISSING && !r.id().equals(o.cutOff()));
             if (renders != null) {
                 renders.done = true;
                 readRenders(pngs, renders.images, renders.errors, renders.late, renders.references, renders.pixels);
-                renders.timedOut = !o.finished() && o.problem().startsWith("stopped after");
+                renders.timedOut = !o.finished() && o.timedOut();
                 byte[] millis = readCapped(dir.resolve("render").resolve("millis.txt"), 64);
                 try {
                     renders.millis = Long.parseLong(new String(millis == null ? new byte[0] : millis,
@@ -610,7 +610,7 @@ public final class Grader {
             if (!o.finished() && !o.problem().isEmpty() && !allReported) {
                 boolean visibleDone = expected.stream().filter(e -> visible.contains(GraderSetup.outer(e.className())))
                         .map(e -> got.get(e.id())).allMatch(r -> r != null && r.status() != TestResult.Status.MISSING
-                                && !r.message().startsWith("this test was running when"));
+                                && !r.id().equals(o.cutOff()));
                 // What went wrong in the hidden run is named on the hidden tests only (their visibility).
                 notes.add(visibleDone ? "the hidden tests' run did not finish (see the hidden tests)"
                         : "the test run did not finish: " + o.problem());
@@ -813,6 +813,7 @@ public final class Grader {
                 name = "data case: " + (c == null ? first.method() : c.name());
             }
             boolean passed = true;
+            boolean gradingFailed = false; // the first failure is the grader's, not the student's
             String message = "";
             String output = "";
             long ms = 0;
@@ -828,14 +829,15 @@ public final class Grader {
                 if (!r.status().passed()) {
                     failedCount++;
                     if (passed) {
-                        message = r.gradingFailed() ? GradingStatus.message(r.message())
+                        gradingFailed = r.gradingFailed();
+                        message = gradingFailed ? GradingStatus.message(r.message())
                                 : explain(r, g.size() > 1 ? r.displayName() : null);
                         output = r.output() == null ? "" : r.output();
                     }
                     passed = false;
                 }
             }
-            if (failedCount > 1 && g.size() > 1 && !message.startsWith(GradingStatus.STUDENT_MESSAGE)) {
+            if (failedCount > 1 && g.size() > 1 && !gradingFailed) {
                 message = failedCount + " of " + g.size() + " cases failed; the first: " + message;
             }
             if (kind != Kind.VISIBLE) {
