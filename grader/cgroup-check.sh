@@ -5,7 +5,7 @@
 # the score. Not a test: timing depends on the machine; run it by hand after changing the grader.
 #
 #   grader/cgroup-check.sh [--jar JAR] [--cpu 0.5] [--mem-mb 768] [--runs 1] [--milestone M]...
-#                          [--java-opt OPT]...   (more options for the grader JVM, e.g. -Draylab.grade.boundary=false)
+#                          [--java-opt OPT]...   (more options for the grader JVM, e.g. -XX:ActiveProcessorCount=1)
 #
 # The grader JVM gets the options the platforms' scripts give it (raylab.grade.JvmOptions.GRADER).
 #

@@ -4,7 +4,7 @@
 # Usage: grader/scores.sh OUTDIR [NAME...]   -> OUTDIR/NAME.tsv (milestone, test, score, max) and
 # OUTDIR/NAME.results.json; the total on standard output. Compare two runs with diff.
 # Environment: RAYLAB_GRADE_OPTS (grade options, e.g. "--seed 5" to grade the same variants),
-# RAYLAB_JAVA_OPTS (grader JVM options, e.g. -Draylab.grade.boundary=false for the older path).
+# RAYLAB_JAVA_OPTS (grader JVM options, e.g. -XX:ActiveProcessorCount=1).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 out="$(mkdir -p "$1" && cd "$1" && pwd)"; shift

@@ -11,7 +11,7 @@ import raylab.surface.Sphere;
 
 /**
  * Calls per second across the process boundary: Sphere.intersect of the reference (on
- * target/classes) called one at a time and in batches of 256 (a 16x16 tile), and the same
+ * target/classes) called one at a time and in MULTI frames of 256 (a 16x16 tile) and 4096, and the same
  * calls in this JVM. Usage: java -cp target/classes src/bench/boundary/CallRate.java [ROUNDS]
  * Prints thread CPU time of this JVM too (the machine may be loaded: compare in turns).
  */
@@ -43,24 +43,11 @@ public class CallRate {
                 long t1 = System.nanoTime();
                 long c1 = bean.getCurrentThreadCpuTime();
                 long s1 = StudentProcess.cpuNanosOf(p);
-                for (int i = 0; i < n; i += 256) {
-                    List<Object[]> batch = new ArrayList<>();
-                    for (int k = i; k < Math.min(n, i + 256); k++) {
-                        batch.add(new Object[] {new IntersectionRecord(), rays[k]});
-                    }
-                    p.batch("raylab.surface.Sphere", "intersect", s, batch);
-                }
+                multi(p, s, rays, 256);
                 long t2 = System.nanoTime();
                 long c2 = bean.getCurrentThreadCpuTime();
                 long s2 = StudentProcess.cpuNanosOf(p);
-                for (int i = 0; i < n; i += 4096) {
-                    List<StudentProcess.MultiCall> batch = new ArrayList<>();
-                    for (int k = i; k < Math.min(n, i + 4096); k++) {
-                        batch.add(new StudentProcess.MultiCall("raylab.surface.Sphere", "intersect", s,
-                                new Object[] {new IntersectionRecord(), rays[k]}, List.of()));
-                    }
-                    p.multi(batch);
-                }
+                multi(p, s, rays, 4096);
                 long t2m = System.nanoTime();
                 long c2m = bean.getCurrentThreadCpuTime();
                 long s2m = StudentProcess.cpuNanosOf(p);
@@ -72,10 +59,22 @@ public class CallRate {
                 }
                 long t3 = System.nanoTime();
                 System.out.printf("round %d: sync %,.0f calls/s (grader CPU %.1f us/call, student CPU %.1f us/call);"
-                        + " batched %,.0f calls/s (grader %.2f us, student %.2f us); in-process %,.0f calls/s%n", r,
+                        + " multi by 256 %,.0f calls/s (grader %.2f us, student %.2f us); in-process %,.0f calls/s%n", r,
                         n / ((t1 - t0) / 1e9), (c1 - c0) / 1e3 / n, (s1 - s0) / 1e3 / n,
                         n / ((t2 - t1) / 1e9), (c2 - c1) / 1e3 / n, (s2 - s1) / 1e3 / n, n / ((t3 - t2) / 1e9));
             }
+        }
+    }
+
+    /** All rays as MULTI frames of {@code size} calls each. */
+    private static void multi(StudentProcess p, Sphere s, Ray[] rays, int size) {
+        for (int i = 0; i < rays.length; i += size) {
+            List<StudentProcess.MultiCall> batch = new ArrayList<>();
+            for (int k = i; k < Math.min(rays.length, i + size); k++) {
+                batch.add(new StudentProcess.MultiCall("raylab.surface.Sphere", "intersect", s,
+                        new Object[] {new IntersectionRecord(), rays[k]}, List.of()));
+            }
+            p.multi(batch);
         }
     }
 }

@@ -25,6 +25,7 @@ import raylab.numerics.SphereMethods;
 import raylab.numerics.TriangleMethods;
 import raylab.ray.IntersectionRecord;
 import raylab.ray.Ray;
+import raylab.study.EarlierOffsets;
 import raylab.surface.Box;
 import raylab.surface.Group;
 import raylab.surface.Sphere;
@@ -197,7 +198,7 @@ public class IntersectionBenchmark {
     @Benchmark
     @OperationsPerInvocation(N)
     public long shadowSceneGlobal() {
-        return blocked(ShadowOffsets::sceneGlobal);
+        return blocked(EarlierOffsets::sceneGlobal);
     }
 
     @Benchmark

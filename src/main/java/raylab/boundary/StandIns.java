@@ -1,6 +1,5 @@
 package raylab.boundary;
 
-import java.io.File;
 import java.io.IOException;
 import java.io.StringWriter;
 import java.net.URI;
@@ -17,12 +16,9 @@ import java.util.stream.Collectors;
 
 import javax.lang.model.element.Modifier;
 import javax.tools.Diagnostic;
-import javax.tools.DiagnosticCollector;
 import javax.tools.JavaCompiler;
 import javax.tools.JavaFileObject;
 import javax.tools.SimpleJavaFileObject;
-import javax.tools.StandardJavaFileManager;
-import javax.tools.ToolProvider;
 
 import com.sun.source.tree.ClassTree;
 import com.sun.source.tree.CompilationUnitTree;
@@ -32,6 +28,8 @@ import com.sun.source.tree.VariableTree;
 import com.sun.source.util.JavacTask;
 import com.sun.source.util.SourcePositions;
 import com.sun.source.util.Trees;
+
+import raylab.course.JavaBuild;
 
 /**
  * Stand-in classes for the grader's process: the public (starter) source of a student class with
@@ -50,7 +48,7 @@ public final class StandIns {
      */
     public static String forwarding(String source, String fqcn, Set<String> methods) throws IOException {
         String simple = fqcn.substring(fqcn.lastIndexOf('.') + 1);
-        JavaCompiler javac = compiler();
+        JavaCompiler javac = JavaBuild.compiler();
         JavaFileObject file = new SimpleJavaFileObject(URI.create("string:///" + fqcn.replace('.', '/') + ".java"),
                 JavaFileObject.Kind.SOURCE) {
             @Override
@@ -113,14 +111,6 @@ public final class StandIns {
         return "{ return (" + boxed + ") " + call + "; }";
     }
 
-    private static JavaCompiler compiler() throws IOException {
-        JavaCompiler javac = ToolProvider.getSystemJavaCompiler();
-        if (javac == null) {
-            throw new IOException("no Java compiler in this runtime: run raylab with a JDK, not a JRE");
-        }
-        return javac;
-    }
-
     /**
      * Compiles sources given as text (relative path such as {@code raylab/surface/Sphere.java} →
      * source) against {@code classPath} into {@code out}, as Java 17 with {@code -parameters}.
@@ -139,29 +129,19 @@ public final class StandIns {
                 Files.writeString(f, e.getValue(), StandardCharsets.UTF_8);
                 files.add(f);
             }
-            JavaCompiler javac = compiler();
-            DiagnosticCollector<JavaFileObject> diagnostics = new DiagnosticCollector<>();
-            try (StandardJavaFileManager fm = javac.getStandardFileManager(diagnostics, Locale.ROOT, StandardCharsets.UTF_8)) {
-                List<String> options = List.of("--release", "17", "-encoding", "UTF-8", "-nowarn", "-proc:none",
-                        "-implicit:none", "-parameters", "-d", out.toString(), "-classpath",
-                        classPath.stream().map(Path::toString).collect(Collectors.joining(File.pathSeparator)));
-                boolean ok = javac.getTask(new StringWriter(), fm, diagnostics, options, null,
-                        fm.getJavaFileObjectsFromPaths(files)).call();
-                if (!ok) {
-                    StringBuilder msg = new StringBuilder("the grader's stand-in classes do not compile:");
-                    for (Diagnostic<? extends JavaFileObject> d : diagnostics.getDiagnostics()) {
-                        if (d.getKind() == Diagnostic.Kind.ERROR) {
-                            msg.append("\n  ").append(d.getSource() == null ? "" : src.relativize(Path.of(d.getSource().toUri())))
-                                    .append(":").append(d.getLineNumber()).append(": ").append(d.getMessage(Locale.ROOT));
-                        }
-                    }
-                    throw new IOException(msg.toString());
+            List<Diagnostic<? extends JavaFileObject>> errors = JavaBuild.javac(files, classPath, out,
+                    List.of("-implicit:none", "-parameters")).stream().filter(d -> d.getKind() == Diagnostic.Kind.ERROR)
+                    .toList();
+            if (!errors.isEmpty()) {
+                StringBuilder msg = new StringBuilder("the grader's stand-in classes do not compile:");
+                for (Diagnostic<? extends JavaFileObject> d : errors) {
+                    msg.append("\n  ").append(d.getSource() == null ? "" : src.relativize(Path.of(d.getSource().toUri())))
+                            .append(":").append(d.getLineNumber()).append(": ").append(d.getMessage(Locale.ROOT));
                 }
+                throw new IOException(msg.toString());
             }
         } finally {
-            try (var w = Files.walk(src)) {
-                w.sorted(Comparator.reverseOrder()).forEach(p -> p.toFile().delete());
-            }
+            JavaBuild.deleteTreeQuietly(src);
         }
     }
 }

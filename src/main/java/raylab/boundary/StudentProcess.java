@@ -4,7 +4,6 @@ import java.io.BufferedInputStream;
 import java.io.BufferedOutputStream;
 import java.io.ByteArrayOutputStream;
 import java.io.DataInputStream;
-import java.io.EOFException;
 import java.io.File;
 import java.io.IOException;
 import java.io.InputStream;
@@ -24,6 +23,7 @@ import java.util.Map;
 import java.util.Set;
 import java.util.function.Consumer;
 
+import raylab.course.JavaBuild;
 import raylab.light.PointLight;
 import raylab.material.Material;
 import raylab.math.Color;
@@ -458,43 +458,6 @@ public final class StudentProcess implements AutoCloseable {
     }
 
     /**
-     * Calls {@code cls.name} on {@code target} once per argument list, in one frame each way.
-     * An exception of call i is thrown with {@link StudentException#index} i... see {@link BatchFailure}.
-     */
-    public synchronized List<Object> batch(String cls, String name, Object target, List<Object[]> argLists) {
-        return run(() -> {
-            checkpoint();
-            int m = method(cls, name, argLists.isEmpty() ? 0 : argLists.get(0).length);
-            buf.reset();
-            buf.writeInt(m);
-            Wire.writeValue(buf, target, refs);
-            buf.writeInt(argLists.size());
-            for (Object[] args : argLists) {
-                buf.writeInt(args.length);
-                for (Object a : args) {
-                    Wire.writeValue(buf, a, refs);
-                }
-            }
-            int conv = nextConv++;
-            Wire.writeFrame(out, Wire.BATCH, conv, buf);
-            out.flush();
-            calls += argLists.size();
-            Wire.Frame f = await(conv, Wire.BATCH_RETURN);
-            int n = f.in().readInt();
-            if (n != argLists.size()) {
-                throw new Wire.ProtocolException("batch answered " + n + " of " + argLists.size() + " calls");
-            }
-            List<Object> results = new ArrayList<>(n);
-            for (Object[] args : argLists) {
-                results.add(Wire.readValue(f.in(), refs));
-                copyRecords(f.in(), args);
-            }
-            output(f.in().readString());
-            return results;
-        });
-    }
-
-    /**
      * One call of a {@link #multi} frame: the method, its target and arguments (records as they
      * are before the call; not changed by it), the callbacks it is expected to ask with their
      * answers (the grader's own, never a prediction); and after the call its result or exception
@@ -903,32 +866,17 @@ public final class StudentProcess implements AutoCloseable {
         }
     }
 
-    /** A student exception of call {@code index} of a batch (−1: not a batch). */
-    public static final class BatchFailure extends StudentException {
-        private static final long serialVersionUID = 1L;
-        private final int index;
-
-        BatchFailure(int index, String cls, String msg, List<String> frames) {
-            super(cls, msg, frames, "");
-            this.index = index;
-        }
-
-        public int index() {
-            return index;
-        }
-    }
-
     /** An exception in a MULTI reply: class, message, frames. */
     private RuntimeException throwable(Wire.In in) throws IOException {
-        return throwable(in, -1, false);
+        return throwable(in, false);
     }
 
-    /** A THROW frame: the call's index (−1: not in a batch), the exception, the output. */
+    /** A THROW frame: the exception, the output. */
     private RuntimeException thrown(Wire.In in) throws IOException {
-        return throwable(in, in.readInt(), true);
+        return throwable(in, true);
     }
 
-    private RuntimeException throwable(Wire.In in, int index, boolean withOutput) throws IOException {
+    private RuntimeException throwable(Wire.In in, boolean withOutput) throws IOException {
         String cls = in.readString();
         String msg = in.readString();
         int n = in.readInt();
@@ -951,7 +899,7 @@ public final class StudentProcess implements AutoCloseable {
             // The untouched stub: the framework's own exception, so messages say "TODO".
             return NotImplementedAgain.of(msg);
         }
-        return index >= 0 ? new BatchFailure(index, cls, msg, frames) : new StudentException(cls, msg, frames, "");
+        return new StudentException(cls, msg, frames, "");
     }
 
     /** Callbacks answered one at a time (those not answered in advance), for measurements. */
@@ -1411,7 +1359,7 @@ public final class StudentProcess implements AutoCloseable {
      */
     public static List<String> javaCommand(List<Path> classPath, int heapMb, List<String> studentClasses) {
         List<String> cmd = new ArrayList<>(StudentServer.CHANNEL_WRAPPER);
-        cmd.addAll(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
+        cmd.addAll(List.of(JavaBuild.javaExecutable(),
                 StudentServer.CHANNEL_JVM_OPTION, "-Xmx" + heapMb + "m", "-XX:+ExitOnOutOfMemoryError", "-Djava.awt.headless=true",
                 "-XX:+DisableAttachMechanism", "-XX:-UsePerfData", "-XX:TieredStopAtLevel=4", "-Xss4m",
                 "-cp", String.join(File.pathSeparator, classPath.stream().map(Path::toString).toList()),

@@ -1,29 +1,20 @@
 package raylab.cli;
 
-import java.io.File;
 import java.io.IOException;
 import java.io.InputStream;
 import java.io.OutputStream;
-import java.io.StringWriter;
-import java.nio.charset.StandardCharsets;
 import java.nio.file.Files;
 import java.nio.file.Path;
 import java.nio.file.attribute.FileTime;
 import java.util.ArrayList;
 import java.util.List;
-import java.util.Locale;
 import java.util.Properties;
 import java.util.TreeSet;
-import java.util.stream.Collectors;
 
-import javax.tools.DiagnosticCollector;
-import javax.tools.JavaCompiler;
-import javax.tools.JavaFileObject;
-import javax.tools.StandardJavaFileManager;
-import javax.tools.ToolProvider;
 
 import raylab.course.Assignment;
 import raylab.course.Assignments;
+import raylab.course.JavaBuild;
 
 /**
  * The student's loop without Maven: after the first full build ({@code target/raylab.jar}), a
@@ -127,35 +118,21 @@ public final class Incremental {
 
     /** Compiles {@code sources} against the overlay and {@code classPath} into the overlay, and stamps them. */
     public Result compile(List<Path> sources, List<Path> classPath) throws IOException {
-        Files.createDirectories(overlay);
-        JavaCompiler javac = ToolProvider.getSystemJavaCompiler();
-        if (javac == null) {
-            throw new IOException("no Java compiler in this runtime: run raylab with a JDK, not a JRE");
-        }
         List<Path> cp = new ArrayList<>();
         cp.add(overlay);
         classPath.stream().filter(p -> !p.toAbsolutePath().normalize().equals(overlay.toAbsolutePath().normalize()))
                 .forEach(cp::add);
-        DiagnosticCollector<JavaFileObject> diagnostics = new DiagnosticCollector<>();
-        try (StandardJavaFileManager files = javac.getStandardFileManager(diagnostics, Locale.ROOT,
-                StandardCharsets.UTF_8)) {
-            List<String> options = List.of("--release", "17", "-encoding", "UTF-8", "-nowarn", "-proc:none",
-                    "-implicit:none", "-g", "-d", overlay.toString(), "-classpath",
-                    cp.stream().map(Path::toString).collect(Collectors.joining(File.pathSeparator)));
-            StringWriter noise = new StringWriter();
-            boolean ok = javac.getTask(noise, files, diagnostics, options, null,
-                    files.getJavaFileObjectsFromPaths(sources)).call();
-            List<CompileErrors.Error> errors = CompileErrors.of(diagnostics.getDiagnostics());
-            if (ok && errors.isEmpty()) {
-                Properties stamps = readStamps();
-                for (Path p : sources) {
-                    stamps.setProperty(key(p), stamp(p));
-                }
-                writeStamps(stamps);
-                return new Result(true, List.of());
+        List<CompileErrors.Error> errors = CompileErrors.of(JavaBuild.javac(sources, cp, overlay,
+                List.of("-implicit:none", "-g")));
+        if (errors.isEmpty()) {
+            Properties stamps = readStamps();
+            for (Path p : sources) {
+                stamps.setProperty(key(p), stamp(p));
             }
-            return new Result(false, errors);
+            writeStamps(stamps);
+            return new Result(true, List.of());
         }
+        return new Result(false, errors);
     }
 
     /** Plans and, when only student files changed, compiles them: null when a full build is needed. */

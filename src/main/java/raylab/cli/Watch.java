@@ -73,7 +73,7 @@ final class Watch {
             out.println();
             out.flush();
             if (compile(out, home)) {
-                List<String> cmd = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
+                List<String> cmd = new ArrayList<>(List.of(JavaBuild.javaExecutable(),
                         "-Draylab.home=" + home, "-cp", String.join(File.pathSeparator,
                                 JavaBuild.ownClassPath().stream().map(p -> p.toAbsolutePath().toString()).toList()),
                         Main.class.getName()));

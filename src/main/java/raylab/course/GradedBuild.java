@@ -1,6 +1,5 @@
 package raylab.course;
 
-import java.io.File;
 import java.io.IOException;
 import java.io.StringWriter;
 import java.nio.charset.StandardCharsets;
@@ -35,7 +34,6 @@ import javax.tools.JavaCompiler;
 import javax.tools.JavaFileObject;
 import javax.tools.SimpleJavaFileObject;
 import javax.tools.StandardJavaFileManager;
-import javax.tools.ToolProvider;
 
 import com.sun.source.tree.CompilationUnitTree;
 import com.sun.source.tree.Tree;
@@ -153,7 +151,7 @@ public final class GradedBuild {
     /** Every non-private member (and nested type) of the given classes, as {@link #signature} gives it. */
     static Set<String> api(List<String> classes, List<Path> classPath) throws IOException {
         Set<String> out = new TreeSet<>();
-        JavaCompiler javac = compiler();
+        JavaCompiler javac = JavaBuild.compiler();
         try (StandardJavaFileManager files = javac.getStandardFileManager(null, Locale.ROOT, StandardCharsets.UTF_8)) {
             JavacTask task = (JavacTask) javac.getTask(new StringWriter(), files, null, options(classPath), null,
                     List.of(source("Empty.java", "class Empty {}")));
@@ -276,7 +274,7 @@ public final class GradedBuild {
             Set<String> original, List<String> addedFiles) throws IOException {
         Map<String, String> ownByClass = new LinkedHashMap<>();
         own.keySet().forEach(f -> ownByClass.put(classNameOf(f), f));
-        JavaCompiler javac = compiler();
+        JavaCompiler javac = JavaBuild.compiler();
         DiagnosticCollector<JavaFileObject> diagnostics = new DiagnosticCollector<>();
         Set<String> out = new LinkedHashSet<>();
         try (StandardJavaFileManager files = javac.getStandardFileManager(diagnostics, Locale.ROOT,
@@ -371,17 +369,10 @@ public final class GradedBuild {
         return p.replaceFirst("\\.java$", "").replace('/', '.');
     }
 
-    private static JavaCompiler compiler() throws IOException {
-        JavaCompiler javac = ToolProvider.getSystemJavaCompiler();
-        if (javac == null) {
-            throw new IOException("no Java compiler in this runtime: run raylab with a JDK, not a JRE");
-        }
-        return javac;
-    }
 
     private static List<String> options(List<Path> classPath) {
         return List.of("--release", "17", "-encoding", "UTF-8", "-nowarn", "-proc:none", "-classpath",
-                classPath.stream().map(Path::toString).collect(Collectors.joining(File.pathSeparator)));
+                JavaBuild.pathOf(classPath));
     }
 
     private static JavaFileObject source(String name, String text) {

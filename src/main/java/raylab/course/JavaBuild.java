@@ -5,11 +5,14 @@ import java.io.IOException;
 import java.io.StringWriter;
 import java.nio.charset.StandardCharsets;
 import java.nio.file.Files;
+import java.nio.file.LinkOption;
 import java.nio.file.Path;
 import java.util.ArrayList;
+import java.util.Comparator;
 import java.util.List;
 import java.util.Locale;
 import java.util.stream.Collectors;
+import java.util.stream.Stream;
 
 import javax.tools.Diagnostic;
 import javax.tools.DiagnosticCollector;
@@ -18,7 +21,11 @@ import javax.tools.JavaFileObject;
 import javax.tools.StandardJavaFileManager;
 import javax.tools.ToolProvider;
 
-/** Compiles Java sources in-process with javax.tools, for release checks, {@code check} and grading. */
+/**
+ * The JDK as every raylab tool uses it: javac in this JVM ({@link #javac}, the one place raylab
+ * compiles), the {@code java} launcher for child JVMs ({@link #javaExecutable}), and the build
+ * and work folders they fill ({@link #deleteTree}); for release checks, {@code check} and grading.
+ */
 public final class JavaBuild {
     /** A compile error: the file, its line, and javac's message. */
     public record Problem(Path file, long line, String message) {
@@ -52,32 +59,103 @@ public final class JavaBuild {
      * as Java 17.
      */
     public static Result compile(List<Path> sources, List<Path> classPath, Path outDir) throws IOException {
-        Files.createDirectories(outDir);
         if (sources.isEmpty()) {
+            Files.createDirectories(outDir);
             return new Result(true, List.of());
         }
+        List<Problem> errors = new ArrayList<>();
+        for (Diagnostic<? extends JavaFileObject> d : javac(sources, classPath, outDir, List.of("-implicit:none"))) {
+            if (d.getKind() == Diagnostic.Kind.ERROR) {
+                Path file = d.getSource() == null ? null : Path.of(d.getSource().toUri());
+                errors.add(new Problem(file, d.getLineNumber(), d.getMessage(Locale.ROOT).split("\n")[0]));
+            }
+        }
+        return new Result(errors.isEmpty(), errors);
+    }
+
+    /**
+     * The one place raylab runs javac on files: in this JVM, as Java 17 ({@code --release 17}),
+     * UTF-8, no warnings, no annotation processing, then {@code options} (such as {@code -g},
+     * {@code -parameters}, {@code -implicit:none}, {@code -sourcepath}), into {@code outDir}
+     * (created if needed) against {@code classPath}.
+     *
+     * @return javac's diagnostics; the sources compiled when none of them is an
+     *         {@link Diagnostic.Kind#ERROR} (javac reports every failure as one)
+     */
+    public static List<Diagnostic<? extends JavaFileObject>> javac(List<Path> sources, List<Path> classPath,
+            Path outDir, List<String> options) throws IOException {
+        Files.createDirectories(outDir);
+        JavaCompiler javac = compiler();
+        DiagnosticCollector<JavaFileObject> diagnostics = new DiagnosticCollector<>();
+        try (StandardJavaFileManager files = javac.getStandardFileManager(diagnostics, Locale.ROOT,
+                StandardCharsets.UTF_8)) {
+            List<String> all = new ArrayList<>(List.of("--release", "17", "-encoding", "UTF-8", "-nowarn",
+                    "-proc:none"));
+            all.addAll(options);
+            all.addAll(List.of("-d", outDir.toString(), "-classpath", pathOf(classPath)));
+            boolean ok = javac.getTask(new StringWriter(), files, diagnostics, all, null,
+                    files.getJavaFileObjectsFromPaths(sources)).call();
+            List<Diagnostic<? extends JavaFileObject>> out = new ArrayList<>(diagnostics.getDiagnostics());
+            if (!ok && out.stream().noneMatch(d -> d.getKind() == Diagnostic.Kind.ERROR)) {
+                throw new IOException("javac failed without naming an error");
+            }
+            return out;
+        }
+    }
+
+    /** The system Java compiler; a JRE has none, which is bad input (a one-line IOException). */
+    public static JavaCompiler compiler() throws IOException {
         JavaCompiler javac = ToolProvider.getSystemJavaCompiler();
         if (javac == null) {
             throw new IOException("no Java compiler in this runtime: run raylab with a JDK, not a JRE");
         }
-        DiagnosticCollector<JavaFileObject> diagnostics = new DiagnosticCollector<>();
-        try (StandardJavaFileManager files = javac.getStandardFileManager(diagnostics, Locale.ROOT,
-                StandardCharsets.UTF_8)) {
-            List<String> options = List.of("--release", "17", "-encoding", "UTF-8", "-nowarn", "-proc:none",
-                    "-implicit:none", "-d", outDir.toString(), "-classpath",
-                    classPath.stream().map(Path::toString).collect(Collectors.joining(File.pathSeparator)));
-            Iterable<? extends JavaFileObject> units = files.getJavaFileObjectsFromPaths(sources);
-            StringWriter noise = new StringWriter();
-            boolean ok = javac.getTask(noise, files, diagnostics, options, null, units).call();
-            List<Problem> errors = new ArrayList<>();
-            for (Diagnostic<? extends JavaFileObject> d : diagnostics.getDiagnostics()) {
-                if (d.getKind() == Diagnostic.Kind.ERROR) {
-                    Path file = d.getSource() == null ? null : Path.of(d.getSource().toUri());
-                    errors.add(new Problem(file, d.getLineNumber(), d.getMessage(Locale.ROOT).split("\n")[0]));
+        return javac;
+    }
+
+    /** Paths joined with the platform's path separator, as {@code -classpath} takes them. */
+    public static String pathOf(List<Path> paths) {
+        return paths.stream().map(Path::toString).collect(Collectors.joining(File.pathSeparator));
+    }
+
+    /**
+     * Deletes a file or a folder with everything in it, if it exists (a link is deleted, never
+     * followed): for the build, work and staging folders the tools make.
+     */
+    public static void deleteTree(Path p) throws IOException {
+        if (p == null || !Files.exists(p, LinkOption.NOFOLLOW_LINKS)) {
+            return;
+        }
+        try (Stream<Path> s = Files.walk(p)) {
+            for (Path q : (Iterable<Path>) s.sorted(Comparator.reverseOrder())::iterator) {
+                Files.deleteIfExists(q);
+            }
+        }
+    }
+
+    /**
+     * As {@link #deleteTree}, but best effort: what cannot be deleted is left and the rest is
+     * still deleted (clean-up after a grading, where a child may have left files it owns).
+     */
+    public static void deleteTreeQuietly(Path p) {
+        if (p == null || !Files.exists(p, LinkOption.NOFOLLOW_LINKS)) {
+            return;
+        }
+        try (Stream<Path> s = Files.walk(p)) {
+            for (Path q : (Iterable<Path>) s.sorted(Comparator.reverseOrder())::iterator) {
+                try {
+                    Files.deleteIfExists(q);
+                } catch (IOException ignored) {
+                    // best effort
                 }
             }
-            return new Result(ok && errors.isEmpty(), errors);
+        } catch (IOException | java.io.UncheckedIOException ignored) {
+            // best effort
         }
+    }
+
+    /** The {@code java} launcher of the JDK this JVM runs on ({@code java.home/bin/java}), for child JVMs. */
+    public static String javaExecutable() {
+        return Path.of(System.getProperty("java.home"), "bin", "java").toString();
     }
 
     /** Every .java file under a directory, sorted (empty if the directory does not exist). */

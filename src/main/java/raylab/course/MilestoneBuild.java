@@ -76,7 +76,7 @@ public final class MilestoneBuild {
     /** As above, with the child's command line prefixed by {@code wrapper} (empty for none). */
     public static RenderOutcome renderInChild(List<Path> classPath, Path scene, Path out, Duration limit,
             int heapMegabytes, Path workDir, List<String> wrapper) throws IOException {
-        String java = Path.of(System.getProperty("java.home"), "bin", "java").toString();
+        String java = JavaBuild.javaExecutable();
         List<String> cmd = new ArrayList<>(wrapper);
         cmd.addAll(List.of(java, "-Xmx" + heapMegabytes + "m", "-Djava.awt.headless=true", "-cp",
                 String.join(File.pathSeparator, classPath.stream().map(Path::toString).toList()),

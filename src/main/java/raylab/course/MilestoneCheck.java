@@ -247,7 +247,7 @@ public final class MilestoneCheck {
         own.addAll(JavaBuild.ownClassPath());
         Path helpers = work.resolve("helpers");
         // Compiled tests are kept while their sources and the built classes stay the same (BuildCache).
-        deleteTree(work.resolve("run"));
+        JavaBuild.deleteTree(work.resolve("run"));
         progress.accept("compiling the visible tests ...");
         JavaBuild.Result h = BuildCache.compile(JavaBuild.sourcesUnder(root.resolve(HELPERS)), own, helpers);
         String helperProblem = h.success() ? "" : "the test helpers do not compile: " + first(root, h);
@@ -335,7 +335,7 @@ public final class MilestoneCheck {
             List<Path> compiled = new ArrayList<>(testDirs);
             compiled.add(helpers);
             List<TestResult> expected = BuildCache.discover(cp, classes, runDir, compiled, work.resolve("discovered.json"));
-            TestLauncher.Outcome o = TestLauncher.run(cp, null, List.of(), classes, TestLauncher.Limits.DEFAULT,
+            TestLauncher.Run o = TestLauncher.run(cp, null, List.of(), classes, TestLauncher.Limits.DEFAULT,
                     runDir, expected);
             for (TestResult t : o.results()) {
                 String c = t.className();
@@ -400,7 +400,7 @@ public final class MilestoneCheck {
 
     static SceneOutcome render(Path root, Assignment.GradedScene g, List<Path> classPath, int threads,
             List<String> studentFiles) throws IOException {
-        String java = Path.of(System.getProperty("java.home"), "bin", "java").toString();
+        String java = JavaBuild.javaExecutable();
         Path png = root.resolve("out").resolve(baseName(g.scene()) + ".png");
         Files.createDirectories(png.getParent()); // render -o refuses a missing folder
         List<String> cmd = List.of(java, "-Xmx1g", "-XX:+ExitOnOutOfMemoryError", "-Djava.awt.headless=true",
@@ -496,16 +496,5 @@ public final class MilestoneCheck {
         Path a = root.toAbsolutePath().normalize();
         Path f = file.toAbsolutePath().normalize();
         return f.startsWith(a) ? a.relativize(f).toString().replace('\\', '/') : f.toString();
-    }
-
-    private static void deleteTree(Path p) throws IOException {
-        if (!Files.exists(p)) {
-            return;
-        }
-        try (var s = Files.walk(p)) {
-            for (Path q : s.sorted(java.util.Comparator.reverseOrder()).toList()) {
-                Files.delete(q);
-            }
-        }
     }
 }

@@ -40,9 +40,13 @@ public final class TestLauncher {
      *
      * @param results  one result per test reported or expected, in order
      * @param finished whether the child reached the end of its run
-     * @param problem  why it did not (timed out, exited early...), empty if it did
+     * @param problem  why it did not (timed out, exited early...), empty if it did: for people
+     *                 to read; code asks {@code timedOut} and {@code cutOff}
+     * @param timedOut whether the run was stopped at its wall-clock limit
+     * @param cutOff   the id of the test that was running when the run stopped (its result says
+     *                 so in its message), or null
      */
-    public record Outcome(List<TestResult> results, boolean finished, String problem) {
+    public record Run(List<TestResult> results, boolean finished, String problem, boolean timedOut, String cutOff) {
         public long passed() {
             return results.stream().filter(r -> r.status().passed()).count();
         }
@@ -64,7 +68,7 @@ public final class TestLauncher {
      */
     public static List<TestResult> discover(List<Path> classPath, Path testClasses, List<String> tags,
             List<String> classes, Path workDir) throws IOException {
-        Outcome o = launch(classPath, testClasses, tags, classes, Limits.DEFAULT, workDir, true, List.of(), List.of(), List.of());
+        Run o = launch(classPath, testClasses, tags, classes, Limits.DEFAULT, workDir, true, List.of(), List.of(), List.of());
         if (!o.finished()) {
             throw new IOException("test discovery failed: " + o.problem());
         }
@@ -96,7 +100,7 @@ public final class TestLauncher {
         return THEN_RENDER + config + "\0" + list + "\0" + seconds;
     }
 
-    public static Outcome run(List<Path> classPath, Path testClasses, List<String> tags, List<String> classes,
+    public static Run run(List<Path> classPath, Path testClasses, List<String> tags, List<String> classes,
             Limits limits, Path workDir, List<TestResult> expected) throws IOException {
         return launch(classPath, testClasses, tags, classes, limits, workDir, false, expected, List.of(), List.of());
     }
@@ -105,7 +109,7 @@ public final class TestLauncher {
      * As {@link #run}, with the child's command line prefixed by {@code wrapper} (for example
      * {@code setpriv --reuid=... --} to run it as an unprivileged user); empty for none.
      */
-    public static Outcome run(List<Path> classPath, Path testClasses, List<String> tags, List<String> classes,
+    public static Run run(List<Path> classPath, Path testClasses, List<String> tags, List<String> classes,
             Limits limits, Path workDir, List<TestResult> expected, List<String> wrapper) throws IOException {
         return launch(classPath, testClasses, tags, classes, limits, workDir, false, expected, wrapper, List.of());
     }
@@ -114,7 +118,7 @@ public final class TestLauncher {
      * As {@link #run}, with more options for the child JVM ({@code -Dname=value}), for example the
      * student process of the grader's process ({@code raylab.boundary}).
      */
-    public static Outcome run(List<Path> classPath, Path testClasses, List<String> tags, List<String> classes,
+    public static Run run(List<Path> classPath, Path testClasses, List<String> tags, List<String> classes,
             Limits limits, Path workDir, List<TestResult> expected, List<String> wrapper, List<String> jvmOptions)
             throws IOException {
         return launch(classPath, testClasses, tags, classes, limits, workDir, false, expected, wrapper, jvmOptions,
@@ -132,7 +136,7 @@ public final class TestLauncher {
      * {@link #GUARD_FACTOR} × {@code limits.wallClock()}: when it fires, the tests not reported
      * fail as a grading failure ({@link TestResult#GRADING_FAILED}), not as the student's.
      */
-    public static Outcome runTrusted(List<Path> classPath, Path testClasses, List<String> classes, Limits limits,
+    public static Run runTrusted(List<Path> classPath, Path testClasses, List<String> classes, Limits limits,
             Path workDir, List<TestResult> expected, List<String> jvmOptions) throws IOException {
         Limits guard = new Limits(limits.heapMegabytes(), limits.wallClock().multipliedBy(GUARD_FACTOR),
                 limits.perTestSeconds(), limits.outputCapBytes());
@@ -143,24 +147,24 @@ public final class TestLauncher {
     /** How much longer than its limits the wall clock of a trusted JVM runs ({@link #runTrusted}). */
     public static final int GUARD_FACTOR = 3;
 
-    private static Outcome launch(List<Path> classPath, Path testClasses, List<String> tags, List<String> classes,
+    private static Run launch(List<Path> classPath, Path testClasses, List<String> tags, List<String> classes,
             Limits limits, Path workDir, boolean list, List<TestResult> expected, List<String> wrapper,
             List<String> jvmOptions) throws IOException {
         return launch(classPath, testClasses, tags, classes, limits, workDir, list, expected, wrapper, jvmOptions,
                 true);
     }
 
-    private static Outcome launch(List<Path> classPath, Path testClasses, List<String> tags, List<String> classes,
+    private static Run launch(List<Path> classPath, Path testClasses, List<String> tags, List<String> classes,
             Limits limits, Path workDir, boolean list, List<TestResult> expected, List<String> wrapper,
             List<String> jvmOptions, boolean limitModules) throws IOException {
         return launch(classPath, testClasses, tags, classes, limits, workDir, list, expected, wrapper, jvmOptions,
                 limitModules, false);
     }
 
-    private static Outcome launch(List<Path> classPath, Path testClasses, List<String> tags, List<String> classes,
+    private static Run launch(List<Path> classPath, Path testClasses, List<String> tags, List<String> classes,
             Limits limits, Path workDir, boolean list, List<TestResult> expected, List<String> wrapper,
             List<String> jvmOptions, boolean limitModules, boolean wallIsGuard) throws IOException {
-        String java = Path.of(System.getProperty("java.home"), "bin", "java").toString();
+        String java = JavaBuild.javaExecutable();
         List<String> cmd = new ArrayList<>(wrapper);
         cmd.add(java);
         cmd.addAll(List.of("-Xmx" + limits.heapMegabytes() + "m", "-Xss1m",
@@ -247,6 +251,7 @@ public final class TestLauncher {
                 problem = String.join("; ", containerFailures);
             }
             List<TestResult> out = new ArrayList<>();
+            String cutOff = null;
             for (TestResult e : expected) {
                 TestResult r = results.remove(e.id());
                 if (r == null) {
@@ -259,6 +264,7 @@ public final class TestLauncher {
                     } else if (e.id().equals(current[0])) {
                         s = exited ? TestResult.Status.CRASHED : TestResult.Status.TIMED_OUT;
                         why = "this test was running when " + (problem.isEmpty() ? "the run stopped" : problem);
+                        cutOff = e.id();
                     } else {
                         s = TestResult.Status.MISSING;
                         why = "no result was reported for this test"
@@ -270,7 +276,7 @@ public final class TestLauncher {
                 out.add(r);
             }
             out.addAll(results.values()); // reported but not expected: kept for the record
-            return new Outcome(out, ended[0] && exited, problem);
+            return new Run(out, ended[0] && exited, problem, !exited, cutOff);
         }
     }
 

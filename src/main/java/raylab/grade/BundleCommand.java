@@ -21,6 +21,7 @@ import raylab.cli.OptionalCommand;
 import raylab.cli.UserError;
 import raylab.course.Assignment;
 import raylab.course.Assignments;
+import raylab.course.JavaBuild;
 
 /**
  * {@code raylab bundle TARGET --out PATH}: what a grading platform needs.
@@ -250,7 +251,7 @@ public final class BundleCommand implements Callable<Integer>, OptionalCommand {
                         + " (above): nothing was written to " + out, 1);
             }
         } finally {
-            GraderSetup.deleteTree(staged);
+            JavaBuild.deleteTreeQuietly(staged);
         }
     }
 

@@ -14,6 +14,8 @@ import java.util.Optional;
 import java.util.TreeMap;
 import java.util.stream.Stream;
 
+import raylab.course.JavaBuild;
+
 /**
  * The grader cache's hash manifest: {@code manifest.sha256} at the top of a cache folder, one
  * line {@code <sha-256>  <path>} per regular file (the format of {@code sha256sum}, so
@@ -60,7 +62,7 @@ final class CacheManifest {
     static boolean usable(Path dir, java.util.function.Consumer<String> log) {
         if (!Files.isDirectory(dir, LinkOption.NOFOLLOW_LINKS)) {
             if (Files.exists(dir, LinkOption.NOFOLLOW_LINKS)) {
-                GraderSetup.deleteTree(dir);
+                JavaBuild.deleteTreeQuietly(dir);
             }
             return false;
         }
@@ -82,7 +84,7 @@ final class CacheManifest {
         } catch (IOException e) {
             aside = dir;
         }
-        GraderSetup.deleteTree(aside);
+        JavaBuild.deleteTreeQuietly(aside);
     }
 
     /** The cache as one grading found it, to be checked when the grading ends. */

@@ -10,6 +10,7 @@ import java.util.function.Consumer;
 
 import raylab.course.Assignment;
 import raylab.course.Assignments;
+import raylab.course.JavaBuild;
 
 /**
  * The course checks itself before students see it ({@code raylab self-check}, {@code raylab
@@ -113,7 +114,7 @@ public final class CourseCheck {
             out.add("the reference cannot be graded: " + GradeCommand.describe(e));
         } finally {
             if (sub != null) {
-                GraderSetup.deleteTree(sub);
+                JavaBuild.deleteTreeQuietly(sub);
             }
         }
         return out.stream().map(GradeCommand::oneLine).distinct().toList();

@@ -17,6 +17,7 @@ import picocli.CommandLine.Command;
 import picocli.CommandLine.Option;
 import picocli.CommandLine.Parameters;
 import raylab.cli.OptionalCommand;
+import raylab.course.JavaBuild;
 import raylab.course.TestLauncher;
 
 /** {@code raylab grade SUBMISSION --out DIR}: the autograder (instructor tree only). */
@@ -140,8 +141,8 @@ public final class GradeCommand implements Callable<Integer>, OptionalCommand {
         });
     }
 
-    private static Sandbox.Mode mode(String s) {
-        for (Sandbox.Mode m : Sandbox.Mode.values()) {
+    private static Sandbox.Isolation mode(String s) {
+        for (Sandbox.Isolation m : Sandbox.Isolation.values()) {
             if (m.name().equalsIgnoreCase(s)) {
                 return m;
             }
@@ -292,7 +293,7 @@ public final class GradeCommand implements Callable<Integer>, OptionalCommand {
             if (!before.contains(name)) {
                 Path p = out.resolve(name);
                 System.err.println("raylab: removing " + p + ", which appeared during grading (not written by the grader)");
-                GraderSetup.deleteTree(p);
+                JavaBuild.deleteTreeQuietly(p);
             }
         }
     }

@@ -23,6 +23,7 @@ import raylab.course.Assignments;
 import raylab.course.GradingPlan;
 import raylab.course.JavaBuild;
 import raylab.course.MilestoneBuild;
+import raylab.course.Submission;
 import raylab.course.TestLauncher;
 import raylab.course.TestResult;
 import raylab.grade.GradeReport.Kind;
@@ -50,15 +51,15 @@ public final class Grader {
      * @param parallel    milestones graded at the same time
      */
     public record Options(Path root, List<String> milestones, TestLauncher.Limits limits, Duration sceneLimit,
-            int sceneHeapMb, Path cacheDir, String sandboxUser, int parallel, Sandbox.Mode sandboxMode) {
+            int sceneHeapMb, Path cacheDir, String sandboxUser, int parallel, Sandbox.Isolation sandboxMode) {
         public Options(Path root, List<String> milestones, TestLauncher.Limits limits, Duration sceneLimit,
                 int sceneHeapMb, Path cacheDir, String sandboxUser, int parallel) {
-            this(root, milestones, limits, sceneLimit, sceneHeapMb, cacheDir, sandboxUser, parallel, Sandbox.Mode.AUTO);
+            this(root, milestones, limits, sceneLimit, sceneHeapMb, cacheDir, sandboxUser, parallel, Sandbox.Isolation.AUTO);
         }
 
-        public Options withSandboxMode(Sandbox.Mode m) {
+        public Options withSandboxMode(Sandbox.Isolation m) {
             return new Options(root, milestones, limits, sceneLimit, sceneHeapMb, cacheDir, sandboxUser, parallel,
-                    m == null ? Sandbox.Mode.AUTO : m);
+                    m == null ? Sandbox.Isolation.AUTO : m);
         }
 
         public static Options defaults(Path root) {
@@ -91,17 +92,6 @@ public final class Grader {
     private static List<String> extraJvmOptions(String variable) {
         String v = System.getenv(variable);
         return v == null || v.isBlank() ? List.of() : List.of(v.trim().split("\\s+"));
-    }
-
-    /**
-     * Whether student code runs behind the process boundary (the default; grader/README.md "The
-     * process boundary"): the tests and renders run in trusted JVMs whose stand-ins call the
-     * student process. The system property {@code raylab.grade.boundary=false} selects the older
-     * path (student code in the test and render JVMs), kept only to compare the two: it does not
-     * keep secrets from student code.
-     */
-    static boolean processBoundary() {
-        return !"false".equalsIgnoreCase(System.getProperty("raylab.grade.boundary", "true"));
     }
 
     private final Options options;
@@ -159,7 +149,7 @@ public final class Grader {
             System.err.printf("setup %.1f s%n", (System.nanoTime() - t0) / 1e9);
         }
         // Mode none: children could write the cache; it is checked against this manifest at the end.
-        CacheManifest.Guard cacheGuard = sandbox.mode() == Sandbox.Mode.NONE ? CacheManifest.guard(setup.dir) : null;
+        CacheManifest.Guard cacheGuard = sandbox.mode() == Sandbox.Isolation.NONE ? CacheManifest.guard(setup.dir) : null;
         this.allAssignments = all.all();
         this.hiddenTexts = hiddenTexts(setup, all.all());
         // Every reference image is read before any student code runs.
@@ -169,20 +159,18 @@ public final class Grader {
                 references.put(sc.reference(), ref == null ? null : Files.readAllBytes(ref));
             }
         }
-        // Variants of the graded scenes. Behind the boundary their references come from the
-        // grader's render (the first round of each band traces with the reference only), else
-        // they are rendered here by the reference solution.
+        // Variants of the graded scenes. Their references come from the grader's render (the first
+        // round of each band traces with the reference only).
         notes.add(GradeReport.SEED_NOTE + seed + " (grade with --seed " + seed + " to grade the same variants again)");
         long v0 = System.nanoTime();
-        for (GradedScenes.Graded g : GradedScenes.forGrading(root, selected, seed, !processBoundary())) {
+        for (GradedScenes.Graded g : GradedScenes.forGrading(root, selected, seed, false)) {
             graded.put(g.scene().scene(), g);
             if (!g.note().isEmpty()) {
                 notes.add(g.note());
             }
         }
         if (TIMES) {
-            System.err.printf("variants%s %.1f s%n", processBoundary() ? "" : " and their references",
-                    (System.nanoTime() - v0) / 1e9);
+            System.err.printf("variants %.1f s%n", (System.nanoTime() - v0) / 1e9);
         }
 
         Submission read;
@@ -202,14 +190,14 @@ public final class Grader {
         Path workParent = options.cacheDir().toAbsolutePath().resolve("work");
         Files.createDirectories(workParent);
         // Without a sandbox the child could walk up from its folder: then the system's temporary folder.
-        Path work = sandbox.mode() != Sandbox.Mode.NONE && traversableByAll(workParent)
+        Path work = sandbox.mode() != Sandbox.Isolation.NONE && traversableByAll(workParent)
                 ? Files.createTempDirectory(workParent, "grade")
                 : Files.createTempDirectory("raylab-grade");
         Sandbox.workFolder(work);
         Map<String, GradeReport.Milestone> results = new LinkedHashMap<>();
         // Side by side only when each child has its own namespaces: otherwise one milestone's child
         // could see another's (its command line in /proc names its box).
-        ExecutorService pool = Executors.newFixedThreadPool(sandbox.mode() == Sandbox.Mode.NAMESPACE
+        ExecutorService pool = Executors.newFixedThreadPool(sandbox.mode() == Sandbox.Isolation.NAMESPACE
                 ? Math.max(1, options.parallel()) : 1);
         try {
             // The scenes without their reference images: student code cannot copy a reference.
@@ -229,7 +217,7 @@ public final class Grader {
             }
         } finally {
             pool.shutdownNow();
-            GraderSetup.deleteTree(work);
+            JavaBuild.deleteTreeQuietly(work);
             if (cacheGuard != null) {
                 cacheGuard.check().ifPresent(notes::add);
             }
@@ -375,9 +363,6 @@ public final class Grader {
         // so that nothing the visible JVM prints can hold hidden data.
         List<TestResult> expected = setup.expected.get(a.id());
         Map<String, TestResult> got = new LinkedHashMap<>();
-        List<Path> layers = new ArrayList<>();
-        layers.add(overlay);
-        layers.addAll(below);
         List<String> classes = setup.testClasses.get(a.id());
         List<String> visibleClasses = classes.stream().filter(c -> kindOf(a, c) == Kind.VISIBLE
                 || c.equals(DataCases.visibleClassName(a.id()))).toList();
@@ -387,33 +372,20 @@ public final class Grader {
         List<Path> trusted = new ArrayList<>();
         trusted.add(setup.standIns.get(a.id()));
         trusted.addAll(below);
-        boolean boundary = processBoundary();
-        Renders renders = null;
-        if (boundary) {
-            long t0 = System.nanoTime();
-            renders = a.scenes().isEmpty() ? null : new Renders();
-            runTests(a, visibleClasses, hiddenClasses, expected, trusted, overlay, setup, mdir, sandbox, got, notes,
-                    renders, scenesCopy);
-            if (TIMES) {
-                System.err.printf("%s visible and hidden%s %.1f s%n", a.id(), renders != null && renders.done
-                        ? " tests and the scenes" : "", (System.nanoTime() - t0) / 1e9);
-            }
-        } else {
-            long t0 = System.nanoTime();
-            runTestsInBox(a, false, visibleClasses, expected, layers, setup, mdir, sandbox, got, notes);
-            long t1 = System.nanoTime();
-            runTestsInBox(a, true, hiddenClasses, expected, layers, setup, mdir, sandbox, got, notes);
-            if (TIMES) {
-                System.err.printf("%s visible %.1f s hidden %.1f s%n", a.id(), (t1 - t0) / 1e9, (System.nanoTime() - t1) / 1e9);
-            }
+        long t0 = System.nanoTime();
+        Renders renders = a.scenes().isEmpty() ? null : new Renders();
+        runTests(a, visibleClasses, hiddenClasses, expected, trusted, overlay, setup, mdir, sandbox, got, notes,
+                renders, scenesCopy);
+        if (TIMES) {
+            System.err.printf("%s visible and hidden%s %.1f s%n", a.id(), renders != null && renders.done
+                    ? " tests and the scenes" : "", (System.nanoTime() - t0) / 1e9);
         }
         tests.addAll(scoreTests(a, setup, plan(a), expected, got));
         // Scenes.
         long s0 = System.nanoTime();
         tests.addAll(renders != null && renders.done ? scoreScenes(a, renders.images, renders.errors, renders.late,
                 renders.references, renders.pixels, renders.timedOut, false, renders.millis, options.sceneLimit().multipliedBy(a.scenes().size()))
-                : boundary ? gradeScenes(a, trusted, overlay, setup, mdir, scenesCopy, sandbox)
-                : gradeScenesInBox(a, layers, setup, mdir, scenesCopy, sandbox));
+                : gradeScenes(a, trusted, overlay, setup, mdir, scenesCopy, sandbox));
         if (TIMES) {
             System.err.printf("%s scenes %.1f s%n", a.id(), (System.nanoTime() - s0) / 1e9);
         }
@@ -468,8 +440,7 @@ public final class Grader {
             for (Path p : (Iterable<Path>) s.filter(f -> f.toString().endsWith(".class"))::iterator) {
                 String rel = setup.tests.relativize(p).toString().replace('\\', '/');
                 String outer = GraderSetup.outer(rel.substring(0, rel.length() - 6).replace('/', '.'));
-                boolean isHidden = hiddenClasses.contains(outer)
-                        || (outer.startsWith("raylab.hidden.") && !outer.startsWith("raylab.hidden.RenderMany"));
+                boolean isHidden = hiddenClasses.contains(outer) || outer.startsWith("raylab.hidden.");
                 java.util.Set<String> strings = ClassStrings.of(Files.readAllBytes(p));
                 if (isHidden) {
                     hidden.addAll(strings);
@@ -491,13 +462,6 @@ public final class Grader {
             }
         }
         return out;
-    }
-
-    /** Every test class name of every milestone (outer names). */
-    private static java.util.Set<String> allTestClasses(GraderSetup setup) {
-        java.util.Set<String> all = new java.util.HashSet<>();
-        setup.testClasses.values().forEach(all::addAll);
-        return all;
     }
 
     /** Libraries a test JVM needs (JUnit and Jackson); a render JVM takes all but Maven's. */
@@ -535,7 +499,7 @@ public final class Grader {
         // The protocol on file descriptors of its own: the JVM's output and the student's raw
         // writes to 1 and 2 go to the stderr file (StudentServer.CHANNEL_WRAPPER).
         cmd.addAll(raylab.remote.StudentServer.CHANNEL_WRAPPER);
-        cmd.addAll(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
+        cmd.addAll(List.of(JavaBuild.javaExecutable(),
                 raylab.remote.StudentServer.CHANNEL_JVM_OPTION, "-Xmx" + heapMb + "m",
                 "-Xss4m", "-XX:+UseSerialGC", "-XX:+ExitOnOutOfMemoryError", "-Djava.awt.headless=true",
                 "-XX:+DisableAttachMechanism", "-XX:-UsePerfData", "--limit-modules", TestLauncher.CHILD_MODULES,
@@ -621,16 +585,16 @@ public final class Grader {
                     .plusSeconds(renders == null ? 0 : 30), l.perTestSeconds(), l.outputCapBytes());
             jvm.addAll(JvmOptions.trusted(both.heapMegabytes()));
             jvm.addAll(extraJvmOptions("RAYLAB_TRUSTED_JVM_OPTS"));
-            TestLauncher.Outcome o = TestLauncher.runTrusted(cp, setup.tests, classes, both, dir, expected, jvm);
+            TestLauncher.Run o = TestLauncher.runTrusted(cp, setup.tests, classes, both, dir, expected, jvm);
             for (TestResult r : o.results()) {
                 got.put(r.id(), r);
             }
             boolean allReported = expected.stream().map(e -> got.get(e.id())).allMatch(r -> r != null
-                    && r.status() != TestResult.Status.MISSING && !r.message().startsWith("this test was running when"));
+                    && r.status() != TestResult.Status.MISSING && !r.id().equals(o.cutOff()));
             if (renders != null) {
                 renders.done = true;
                 readRenders(pngs, renders.images, renders.errors, renders.late, renders.references, renders.pixels);
-                renders.timedOut = !o.finished() && o.problem().startsWith("stopped after");
+                renders.timedOut = !o.finished() && o.timedOut();
                 byte[] millis = readCapped(dir.resolve("render").resolve("millis.txt"), 64);
                 try {
                     renders.millis = Long.parseLong(new String(millis == null ? new byte[0] : millis,
@@ -646,7 +610,7 @@ public final class Grader {
             if (!o.finished() && !o.problem().isEmpty() && !allReported) {
                 boolean visibleDone = expected.stream().filter(e -> visible.contains(GraderSetup.outer(e.className())))
                         .map(e -> got.get(e.id())).allMatch(r -> r != null && r.status() != TestResult.Status.MISSING
-                                && !r.message().startsWith("this test was running when"));
+                                && !r.id().equals(o.cutOff()));
                 // What went wrong in the hidden run is named on the hidden tests only (their visibility).
                 notes.add(visibleDone ? "the hidden tests' run did not finish (see the hidden tests)"
                         : "the test run did not finish: " + o.problem());
@@ -655,7 +619,7 @@ public final class Grader {
             for (Sandbox.Box box : boxes) {
                 sandbox.finish(box, null);
             }
-            GraderSetup.deleteTree(dir);
+            JavaBuild.deleteTreeQuietly(dir);
         }
     }
 
@@ -691,56 +655,6 @@ public final class Grader {
         final List<byte[]> references = new ArrayList<>();
         /** Per scene the graded feedback's worst pixels (raylab.inspect.WorstPixels JSON), or null. */
         final List<String> pixels = new ArrayList<>();
-    }
-
-    /** Runs some of M's test classes in one child JVM in its own box; the results go into {@code got}. */
-    private void runTestsInBox(Assignment a, boolean hidden, List<String> classes, List<TestResult> allExpected,
-            List<Path> layers, GraderSetup setup, Path mdir, Sandbox sandbox, Map<String, TestResult> got,
-            List<String> notes) throws IOException {
-        java.util.Set<String> mine = new java.util.HashSet<>(classes);
-        List<TestResult> expected = allExpected.stream().filter(e -> mine.contains(GraderSetup.outer(e.className())))
-                .toList();
-        if (expected.isEmpty()) {
-            return;
-        }
-        java.util.Set<String> anyTest = allTestClasses(setup);
-        Path root = options.root().toAbsolutePath();
-        List<Path> cp = new ArrayList<>();
-        cp.add(setup.tests); // the grader's tests first: nothing the student wrote can replace them
-        cp.addAll(layers);
-        Sandbox.Box box = sandbox.box(mdir, cp, (entry, rel) -> {
-            if (setup.libraries.contains(entry)) {
-                return libraryFor(entry, false);
-            }
-            if (!entry.equals(setup.tests) || !rel.endsWith(".class")) {
-                return true;
-            }
-            String outer = GraderSetup.outer(rel.substring(0, rel.length() - 6).replace('/', '.'));
-            if (mine.contains(outer)) {
-                return true;
-            }
-            if (anyTest.contains(outer) || outer.startsWith("raylab.hidden.RenderMany")) {
-                return false; // other milestones' tests; the grader's render helper
-            }
-            // Helpers: the hidden JVM gets all; the visible one only the student-facing ones.
-            return hidden || outer.equals("raylab.cases.CaseCheck")
-                    || Files.isRegularFile(root.resolve("src/test/java/" + outer.replace('.', '/') + ".java"));
-        });
-        try {
-            TestLauncher.Outcome o = TestLauncher.run(box.classPath().stream().map(Path::of).toList(),
-                    Path.of(box.classPath().get(0)), List.of(), classes, options.limits(), box.run(), expected,
-                    box.wrapper());
-            for (TestResult r : o.results()) {
-                got.put(r.id(), r);
-            }
-            if (!o.finished() && !o.problem().isEmpty()) {
-                // What went wrong in the hidden run is named on the hidden tests only (their visibility).
-                notes.add(hidden ? "the hidden tests' run did not finish (see the hidden tests)"
-                        : "the test run did not finish: " + o.problem());
-            }
-        } finally {
-            sandbox.finish(box, null);
-        }
     }
 
     private void copyOtherReferences(Assignment a, GraderSetup setup, Path out) throws IOException {
@@ -899,6 +813,7 @@ public final class Grader {
                 name = "data case: " + (c == null ? first.method() : c.name());
             }
             boolean passed = true;
+            boolean gradingFailed = false; // the first failure is the grader's, not the student's
             String message = "";
             String output = "";
             long ms = 0;
@@ -914,14 +829,15 @@ public final class Grader {
                 if (!r.status().passed()) {
                     failedCount++;
                     if (passed) {
-                        message = r.gradingFailed() ? GradingStatus.message(r.message())
+                        gradingFailed = r.gradingFailed();
+                        message = gradingFailed ? GradingStatus.message(r.message())
                                 : explain(r, g.size() > 1 ? r.displayName() : null);
                         output = r.output() == null ? "" : r.output();
                     }
                     passed = false;
                 }
             }
-            if (failedCount > 1 && g.size() > 1 && !message.startsWith(GradingStatus.STUDENT_MESSAGE)) {
+            if (failedCount > 1 && g.size() > 1 && !gradingFailed) {
                 message = failedCount + " of " + g.size() + " cases failed; the first: " + message;
             }
             if (kind != Kind.VISIBLE) {
@@ -1032,7 +948,7 @@ public final class Grader {
         Path config = dir.resolve("student.properties");
         raylab.boundary.Remote.writeConfig(config, studentConfig(a, box, overlay, options.sceneLimit().toMillis(),
                 options.sceneHeapMb()));
-        List<String> cmd = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
+        List<String> cmd = new ArrayList<>(List.of(JavaBuild.javaExecutable(),
                 "-Xmx" + options.sceneHeapMb() + "m", "-XX:+ExitOnOutOfMemoryError", "-Djava.awt.headless=true",
                 // Grader code only: every module (--limit-modules would turn class data sharing off).
                 "-XX:+DisableAttachMechanism", "-XX:-UsePerfData",
@@ -1087,7 +1003,7 @@ public final class Grader {
                 p.destroyForcibly();
             }
             sandbox.finish(box, null);
-            GraderSetup.deleteTree(dir);
+            JavaBuild.deleteTreeQuietly(dir);
         }
         long ms = (System.nanoTime() - t0) / 1_000_000 / a.scenes().size();
         // -XX:+ExitOnOutOfMemoryError ends the JVM with status 3 when the heap runs out.
@@ -1157,133 +1073,6 @@ public final class Grader {
         return out;
     }
 
-    /** Renders the milestone's scenes in one child JVM (in its own box) and compares each with its reference. */
-    private List<GradeReport.Test> gradeScenesInBox(Assignment a, List<Path> layers, GraderSetup setup, Path mdir,
-            Path scenesCopy, Sandbox sandbox) throws IOException {
-        List<GradeReport.Test> out = new ArrayList<>();
-        if (a.scenes().isEmpty()) {
-            return out;
-        }
-        Path root = options.root().toAbsolutePath();
-        List<Path> cp = new ArrayList<>();
-        cp.add(setup.tests);
-        cp.addAll(layers);
-        Sandbox.Box box = sandbox.box(mdir, cp, (entry, rel) -> {
-            if (setup.libraries.contains(entry)) {
-                return libraryFor(entry, true);
-            }
-            // Of the grader's tests only the render helper: no test data in the render JVM.
-            return !entry.equals(setup.tests) || rel.startsWith("raylab/hidden/RenderMany");
-        });
-        Path scenes = box.run().resolve("scenes");
-        copyScenes(scenesCopy, scenes);
-        Duration limit = options.sceneLimit().multipliedBy(a.scenes().size());
-        // The sandbox stops the renders at the limit itself and still hands back the images made.
-        List<String> cmd = new ArrayList<>(box.wrapper(limit));
-        cmd.addAll(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
-                "-Xmx" + options.sceneHeapMb() + "m", "-XX:+ExitOnOutOfMemoryError", "-Djava.awt.headless=true", "-XX:+DisableAttachMechanism",
-                "-XX:-UsePerfData", "--limit-modules", TestLauncher.CHILD_MODULES, "-cp",
-                String.join(java.io.File.pathSeparator, box.classPath()), "raylab.hidden.RenderMany"));
-        List<Path> pngs = new ArrayList<>();
-        for (int i = 0; i < a.scenes().size(); i++) {
-            Assignment.GradedScene sc = a.scenes().get(i);
-            Path scene = scenes.resolve(root.resolve("scenes").relativize(root.resolve(sc.scene())).toString());
-            Path png = box.run().resolve("scene" + i + ".png");
-            if (graded.containsKey(sc.scene()) && graded.get(sc.scene()).varied()) {
-                Files.writeString(scene, graded.get(sc.scene()).json()); // the variant in place of the published scene
-            }
-            cmd.add(box.inChild(scene));
-            cmd.add(box.inChild(png));
-            pngs.add(png);
-        }
-        long t0 = System.nanoTime();
-        boolean timedOut = false;
-        List<byte[]> images = new ArrayList<>();
-        List<String> errors = new ArrayList<>();
-        Process p = null;
-        try {
-            ProcessBuilder pb = new ProcessBuilder(cmd).directory(box.run().toFile())
-                    .redirectOutput(ProcessBuilder.Redirect.DISCARD).redirectError(ProcessBuilder.Redirect.DISCARD);
-            p = pb.start();
-            p.getOutputStream().close();
-            try {
-                if (!p.waitFor(limit.toMillis() + 5_000, java.util.concurrent.TimeUnit.MILLISECONDS)
-                        || p.exitValue() == Sandbox.DEADLINE_STATUS) {
-                    timedOut = true;
-                }
-            } catch (InterruptedException e) {
-                Thread.currentThread().interrupt();
-                timedOut = true;
-            }
-            p.descendants().forEach(ProcessHandle::destroyForcibly);
-            p.destroyForcibly();
-            try {
-                p.waitFor(5, java.util.concurrent.TimeUnit.SECONDS);
-            } catch (InterruptedException e) {
-                Thread.currentThread().interrupt();
-            }
-            // Read what the child left only once it is gone, capped in size, not following links.
-            for (Path png : pngs) {
-                images.add(readCapped(png, 64L << 20));
-                byte[] err = readCapped(Path.of(png + ".err"), 64 * 1024);
-                errors.add(err == null ? null : GraderSetup.firstLine(new String(err,
-                        java.nio.charset.StandardCharsets.UTF_8)).replaceFirst("^raylab: ", ""));
-            }
-        } finally {
-            sandbox.finish(box, p);
-        }
-        long ms = (System.nanoTime() - t0) / 1_000_000 / a.scenes().size();
-        // -XX:+ExitOnOutOfMemoryError ends the JVM with status 3 when the heap runs out.
-        boolean outOfMemory = p != null && !timedOut && !p.isAlive() && p.exitValue() == 3;
-        List<String> studentFiles = a.files().stream().map(Assignment.StudentFile::path).toList();
-        for (int i = 0; i < a.scenes().size(); i++) {
-            Assignment.GradedScene sc = a.scenes().get(i);
-            String name = sc.scene();
-            GradedScenes.Graded g = graded.get(sc.scene());
-            byte[] refBytes = g != null && g.varied() ? g.reference() : references.get(sc.reference());
-            byte[] mine = images.get(i);
-            String errLine = errors.get(i) == null ? "" : errors.get(i);
-            String msg;
-            GradeReport.Images shown = null;
-            boolean passed = false;
-            if (refBytes == null) {
-                msg = "grader setup problem: no reference image " + sc.reference();
-            } else if (mine == null || errors.get(i) != null) {
-                msg = !errLine.isEmpty() ? raylab.course.Explain.renderFailure(errLine, studentFiles)
-                        : outOfMemory ? "the render ran out of memory (" + options.sceneHeapMb()
-                                + " MB): look for something that grows with every ray, such as a list or an array"
-                                + " allocated per hit and kept"
-                        : timedOut ? "the renders took longer than " + limit.toSeconds()
-                                + " s and were stopped (an endless loop, or far too slow?)"
-                        : "no image was rendered (the render JVM ended early: System.exit or a crash)";
-                shown = new GradeReport.Images(null, refBytes, null, "");
-            } else {
-                try {
-                    BufferedImage img = ImageIO.read(new java.io.ByteArrayInputStream(mine));
-                    BufferedImage ref = ImageIO.read(new java.io.ByteArrayInputStream(refBytes));
-                    if (img == null) {
-                        throw new IOException("not a PNG image");
-                    }
-                    ImageCompare.Result c = ImageCompare.compare(img, ref);
-                    passed = c.matches(sc.tolerance());
-                    String metric = c.summary() + "; allowed: " + String.format(java.util.Locale.ROOT, "%.3f%%",
-                            100 * sc.tolerance());
-                    msg = passed ? "" : "the image differs from the reference: " + metric
-                            + " (your render, the reference and the difference are shown side by side)"
-                            + (g != null && g.varied() ? "; this grading renders a variant of the scene (camera,"
-                                    + " lights and placement moved); ./raylab check compares the published one" : "");
-                    shown = new GradeReport.Images(mine, refBytes, png(c.diff()), metric);
-                } catch (IOException | RuntimeException e) {
-                    msg = "the rendered image could not be compared: " + e.getMessage();
-                    shown = new GradeReport.Images(null, refBytes, null, "");
-                }
-            }
-            out.add(new GradeReport.Test(a.id(), name, Kind.SCENE, sc.points(), passed ? sc.points() : 0, passed, msg,
-                    "", "visible", ms, sc.scene(), shown));
-        }
-        return out;
-    }
-
     /** The bytes of a regular file (not a link), or null when there is none or it is larger than {@code cap}. */
     private static byte[] readCapped(Path f, long cap) {
         try {
@@ -1314,11 +1103,11 @@ public final class Grader {
                 MilestoneBuild.RenderOutcome o = MilestoneBuild.renderInChild(GraderSetup.ownClassPath(),
                         root.resolve(sc.scene()), out, Duration.ofMinutes(5), 1024, tmp);
                 if (o.exitStatus() != 0 || !Files.isRegularFile(out)) {
-                    GraderSetup.deleteTree(tmp);
+                    JavaBuild.deleteTreeQuietly(tmp);
                     return null;
                 }
                 Files.move(out, cached, java.nio.file.StandardCopyOption.REPLACE_EXISTING);
-                GraderSetup.deleteTree(tmp);
+                JavaBuild.deleteTreeQuietly(tmp);
             }
         }
         return cached;

@@ -4,7 +4,6 @@ import java.io.File;
 import java.io.IOException;
 import java.io.InputStream;
 import java.io.OutputStream;
-import java.io.StringWriter;
 import java.nio.charset.StandardCharsets;
 import java.nio.file.Files;
 import java.nio.file.Path;
@@ -25,11 +24,7 @@ import java.util.stream.Collectors;
 import java.util.stream.Stream;
 
 import javax.tools.Diagnostic;
-import javax.tools.DiagnosticCollector;
-import javax.tools.JavaCompiler;
 import javax.tools.JavaFileObject;
-import javax.tools.StandardJavaFileManager;
-import javax.tools.ToolProvider;
 
 import com.fasterxml.jackson.core.type.TypeReference;
 import com.fasterxml.jackson.databind.JsonNode;
@@ -266,10 +261,6 @@ final class GraderSetup {
                 testSources.add(f);
             }
         }
-        Path renderMany = root.resolve("grader/tests/raylab/hidden/RenderMany.java");
-        if (Files.isRegularFile(renderMany)) {
-            testSources.add(renderMany);
-        }
         // The student-facing assertion helpers are compiled here too, so that a copy compiled
         // elsewhere (target/test-classes) is never needed at run time.
         for (Path helper : JavaBuild.sourcesUnder(root.resolve("src/test/java/raylab/testing"))) {
@@ -287,7 +278,7 @@ final class GraderSetup {
         cp.add(t.tests);
         cp.addAll(GraderSetup.ownClassPath());
         List<String> all = classesOf.values().stream().flatMap(List::stream).toList();
-        TestLauncher.Outcome o = TestLauncher.run(cp, t.tests, List.of(), all,
+        TestLauncher.Run o = TestLauncher.run(cp, t.tests, List.of(), all,
                 new TestLauncher.Limits(1024, Duration.ofMinutes(10), 120, 4096), work, List.of());
         if (!o.finished()) {
             throw new IOException("running the tests on the reference failed: " + o.problem());
@@ -299,7 +290,7 @@ final class GraderSetup {
                     .filter(r -> mine.contains(outer(r.className()))).toList());
         }
         JSON.writerWithDefaultPrettyPrinter().writeValue(tmp.resolve("expected.json").toFile(), exp);
-        deleteTree(work);
+        JavaBuild.deleteTreeQuietly(work);
         CacheManifest.write(tmp);
         // Files readable (children get hard links to them), the folder itself private: only the
         // grader can reach the cache; children get their own copies or links in their box.
@@ -309,7 +300,7 @@ final class GraderSetup {
             Files.move(tmp, dir, StandardCopyOption.ATOMIC_MOVE);
         } catch (IOException e) {
             // another grading built it at the same time: use theirs
-            deleteTree(tmp);
+            JavaBuild.deleteTreeQuietly(tmp);
         }
         s.readExpected(expectedFile, milestones);
         return s;
@@ -521,25 +512,13 @@ final class GraderSetup {
     /** Compiles sources, generating classes for the helpers they use from the source path. */
     static void compileWithSourcePath(List<Path> sources, List<Path> sourcePath, List<Path> classPath, Path out)
             throws IOException {
-        Files.createDirectories(out);
-        JavaCompiler javac = ToolProvider.getSystemJavaCompiler();
-        if (javac == null) {
-            throw new IOException("no Java compiler in this runtime: run the grader with a JDK");
-        }
-        DiagnosticCollector<JavaFileObject> diags = new DiagnosticCollector<>();
-        try (StandardJavaFileManager fm = javac.getStandardFileManager(diags, Locale.ROOT, StandardCharsets.UTF_8)) {
-            List<String> options = List.of("--release", "17", "-encoding", "UTF-8", "-nowarn", "-proc:none",
-                    "-implicit:class", "-d", out.toString(),
-                    "-sourcepath", sourcePath.stream().map(Path::toString).collect(Collectors.joining(File.pathSeparator)),
-                    "-classpath", classPath.stream().map(Path::toString).collect(Collectors.joining(File.pathSeparator)));
-            boolean ok = javac.getTask(new StringWriter(), fm, diags, options, null,
-                    fm.getJavaFileObjectsFromPaths(sources)).call();
-            if (!ok) {
-                String errs = diags.getDiagnostics().stream().filter(d -> d.getKind() == Diagnostic.Kind.ERROR)
-                        .limit(5).map(d -> (d.getSource() == null ? "" : d.getSource().getName() + ":" + d.getLineNumber() + ": ")
-                                + d.getMessage(Locale.ROOT).split("\n")[0]).collect(Collectors.joining("; "));
-                throw new IOException("the grader's tests do not compile (grader setup problem): " + errs);
-            }
+        List<Diagnostic<? extends JavaFileObject>> errors = JavaBuild.javac(sources, classPath, out,
+                List.of("-implicit:class", "-sourcepath", JavaBuild.pathOf(sourcePath))).stream()
+                .filter(d -> d.getKind() == Diagnostic.Kind.ERROR).toList();
+        if (!errors.isEmpty()) {
+            String errs = errors.stream().limit(5).map(d -> (d.getSource() == null ? "" : d.getSource().getName() + ":"
+                    + d.getLineNumber() + ": ") + d.getMessage(Locale.ROOT).split("\n")[0]).collect(Collectors.joining("; "));
+            throw new IOException("the grader's tests do not compile (grader setup problem): " + errs);
         }
     }
 
@@ -566,22 +545,6 @@ final class GraderSetup {
         return HexFormat.of().formatHex(md.digest());
     }
 
-    static void deleteTree(Path root) {
-        if (root == null || !Files.exists(root)) {
-            return;
-        }
-        try (Stream<Path> s = Files.walk(root)) {
-            for (Path p : (Iterable<Path>) s.sorted(java.util.Comparator.reverseOrder())::iterator) {
-                try {
-                    Files.deleteIfExists(p);
-                } catch (IOException ignored) {
-                    // best effort
-                }
-            }
-        } catch (IOException ignored) {
-            // best effort
-        }
-    }
 
     /** Small indirection so tests can run on a subset: all assignments of the root. */
     static final class Assignments0 {

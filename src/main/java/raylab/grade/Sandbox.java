@@ -14,13 +14,15 @@ import java.util.concurrent.TimeUnit;
 import java.util.function.Consumer;
 import java.util.stream.Stream;
 
+import raylab.course.JavaBuild;
+
 /**
  * Where and as whom student code runs. Every child JVM that runs student code gets a private
  * folder, a {@link Box}: {@code cp/} holds read-only copies (or hard links) of exactly the class
  * path entries it needs, {@code run/} is its working directory, the only place it may write.
  * Three modes, the strongest available is chosen:
  * <ul>
- * <li>{@link Mode#NAMESPACE} ({@code unshare} from util-linux works: root, or an unprivileged
+ * <li>{@link Isolation#NAMESPACE} ({@code unshare} from util-linux works: root, or an unprivileged
  * user namespace): new network (no interface but a down loopback), mount, PID, IPC and UTS
  * namespaces; the child's root is an empty read-only tmpfs with only {@code /usr /bin /lib* /etc}
  * and the JDK bound read-only, four device nodes, no {@code /proc}, the box's class path at
@@ -30,10 +32,10 @@ import java.util.stream.Stream;
  * Every capability is dropped ({@code setpriv --bounding-set=-all --no-new-privs}); as root the
  * child also runs as the sandbox user (or {@code nobody}). The child JVM is PID 1 of its PID
  * namespace: when it ends or is killed, the kernel kills every process it left.</li>
- * <li>{@link Mode#USER} (root, the sandbox user exists, but namespaces are not allowed, as in
+ * <li>{@link Isolation#USER} (root, the sandbox user exists, but namespaces are not allowed, as in
  * Docker's default profile): the child runs as the sandbox user through {@code setpriv}; the box
  * is the only grader folder it can read (the grader's work folder is mode 711, the cache 700).</li>
- * <li>{@link Mode#NONE}: the child runs as the grader's user, from its own copies.</li>
+ * <li>{@link Isolation#NONE}: the child runs as the grader's user, from its own copies.</li>
  * </ul>
  * As root (namespace and user modes) every child runs under a user id of its own
  * ({@link UidSlots}), and where cgroups can be written it is in a control group of its own
@@ -60,7 +62,7 @@ final class Sandbox {
     static final int DEADLINE_STATUS = 124;
 
     /** Isolation modes; AUTO picks the strongest available. */
-    enum Mode {
+    enum Isolation {
         AUTO, NAMESPACE, USER, NONE
     }
 
@@ -109,7 +111,7 @@ final class Sandbox {
             "if [ -e \"$R.deadline\" ]; then rc=" + DEADLINE_STATUS + "; fi",
             "exit $rc");
 
-    private final Mode mode;
+    private final Isolation mode;
     private final String user;
     private final int uid;
     private final int gid;
@@ -119,7 +121,7 @@ final class Sandbox {
     private final Path prlimit;
     private final Path setsid;
 
-    private Sandbox(Mode mode, String user, int uid, int gid, boolean root) {
+    private Sandbox(Isolation mode, String user, int uid, int gid, boolean root) {
         this.mode = mode;
         this.user = user;
         this.uid = uid;
@@ -133,10 +135,10 @@ final class Sandbox {
 
     /** No isolation beyond private copies: children run as this process's user. */
     static Sandbox none() {
-        return new Sandbox(Mode.NONE, null, -1, -1, isRoot());
+        return new Sandbox(Isolation.NONE, null, -1, -1, isRoot());
     }
 
-    Mode mode() {
+    Isolation mode() {
         return mode;
     }
 
@@ -166,25 +168,25 @@ final class Sandbox {
      * "": none); {@code wanted}: AUTO or a forced mode (a forced mode that cannot work falls back
      * to a weaker one, logged). {@code log} receives one line saying which mode is used.
      */
-    static Sandbox detect(String userName, Mode wanted, Consumer<String> log) {
+    static Sandbox detect(String userName, Isolation wanted, Consumer<String> log) {
         boolean isRoot = isRoot();
         String name = userName == null ? DEFAULT_USER : userName;
         Optional<int[]> ids = name.isEmpty() ? Optional.empty() : lookup(name);
-        Mode want = wanted == null ? Mode.AUTO : wanted;
+        Isolation want = wanted == null ? Isolation.AUTO : wanted;
         Sandbox s;
-        if ((want == Mode.AUTO || want == Mode.NAMESPACE) && namespacesWork(isRoot)) {
+        if ((want == Isolation.AUTO || want == Isolation.NAMESPACE) && namespacesWork(isRoot)) {
             if (isRoot) {
                 int[] id = ids.orElse(new int[] {65534, 65534});
-                s = new Sandbox(Mode.NAMESPACE, ids.isPresent() ? name : "nobody", id[0], id[1], true);
+                s = new Sandbox(Isolation.NAMESPACE, ids.isPresent() ? name : "nobody", id[0], id[1], true);
             } else {
-                s = new Sandbox(Mode.NAMESPACE, null, -1, -1, false);
+                s = new Sandbox(Isolation.NAMESPACE, null, -1, -1, false);
             }
-        } else if ((want == Mode.AUTO || want == Mode.NAMESPACE || want == Mode.USER) && isRoot && ids.isPresent()
+        } else if ((want == Isolation.AUTO || want == Isolation.NAMESPACE || want == Isolation.USER) && isRoot && ids.isPresent()
                 && tool("setpriv") != null) {
-            s = new Sandbox(Mode.USER, name, ids.get()[0], ids.get()[1], true);
+            s = new Sandbox(Isolation.USER, name, ids.get()[0], ids.get()[1], true);
         } else {
             s = none();
-            if (isRoot && want != Mode.NONE) {
+            if (isRoot && want != Isolation.NONE) {
                 log.accept("sandbox: running as root but " + (ids.isEmpty() ? "there is no user '" + name
                         + "' (create it: useradd -M -s /usr/sbin/nologin " + name + ")" : "setpriv is missing")
                         + " and namespaces are not available");
@@ -268,7 +270,7 @@ final class Sandbox {
             UidSlots.Slot slot, Cgroups.Group cgroup) {
         /** A path inside {@code cp/} or {@code run/} as the child sees it. */
         String inChild(Path hostPath) {
-            return sandbox.mode == Mode.NAMESPACE ? "/box/" + dir.relativize(hostPath).toString().replace('\\', '/')
+            return sandbox.mode == Isolation.NAMESPACE ? "/box/" + dir.relativize(hostPath).toString().replace('\\', '/')
                     : hostPath.toString();
         }
 
@@ -307,7 +309,7 @@ final class Sandbox {
         Files.createDirectories(run.resolve("tmp"));
         Files.createDirectories(dir.resolveSibling(dir.getFileName() + "-root"));
         List<String> inside = new ArrayList<>();
-        boolean link = mode != Mode.NONE;
+        boolean link = mode != Isolation.NONE;
         for (int i = 0; i < classPath.size(); i++) {
             Path from = classPath.get(i);
             Path to = cp.resolve(i + (Files.isDirectory(from) ? "" : "-" + from.getFileName()));
@@ -343,7 +345,7 @@ final class Sandbox {
             } else {
                 continue;
             }
-            inside.add(mode == Mode.NAMESPACE ? "/box/cp/" + to.getFileName() : to.toString());
+            inside.add(mode == Isolation.NAMESPACE ? "/box/cp/" + to.getFileName() : to.toString());
         }
         // Its own user id: as root with a sandbox user (namespace or user mode), from the free range.
         UidSlots.Slot slot = user != null && root ? UidSlots.reserve() : null;
@@ -358,7 +360,7 @@ final class Sandbox {
     /** Permissions: the box readable by the child, run/ writable by it, nothing else. */
     private void prepare(Box b) throws IOException {
         try {
-            if (mode == Mode.NONE) {
+            if (mode == Isolation.NONE) {
                 return;
             }
             try (Stream<Path> s = Files.walk(b.dir().resolve("cp"))) {
@@ -430,7 +432,7 @@ final class Sandbox {
             }
             cmd.add("--");
         }
-        if (mode == Mode.NAMESPACE) {
+        if (mode == Isolation.NAMESPACE) {
             cmd.add(unshare.toString());
             if (!root) {
                 cmd.addAll(List.of("--user", "--map-root-user"));
@@ -452,7 +454,7 @@ final class Sandbox {
         if (setsid != null) {
             cmd.add(setsid.toString());
         }
-        if (mode == Mode.USER) {
+        if (mode == Isolation.USER) {
             cmd.addAll(List.of(setpriv.toString(), "--reuid=" + b.uid(), "--regid=" + b.gid(), "--clear-groups",
                     "--no-new-privs", "--"));
         }
@@ -560,14 +562,14 @@ final class Sandbox {
         if (b.ownUid()) {
             // Whatever the child left in the shared writable places (user mode; in namespace mode
             // it never saw them).
-            if (mode != Mode.NAMESPACE) {
+            if (mode != Isolation.NAMESPACE) {
                 UidSlots.removeFilesOf(b.uid());
             }
             b.slot().release();
         }
-        GraderSetup.deleteTree(b.dir());
+        JavaBuild.deleteTreeQuietly(b.dir());
         Path rootDir = b.dir().resolveSibling(b.dir().getFileName() + "-root");
-        GraderSetup.deleteTree(rootDir);
+        JavaBuild.deleteTreeQuietly(rootDir);
         try {
             Files.deleteIfExists(Path.of(rootDir + ".deadline"));
         } catch (IOException e) {

@@ -15,6 +15,8 @@ import java.nio.file.attribute.PosixFilePermissions;
 import java.util.List;
 import java.util.concurrent.ThreadLocalRandom;
 
+import raylab.course.JavaBuild;
+
 /**
  * User ids of their own for the children (grader running as root): each box reserves one id of
  * {@link #COUNT} starting at {@link #BASE} by locking a file ({@code raylab-uids/<id>.lock} in the
@@ -148,7 +150,7 @@ final class UidSlots {
                                 return FileVisitResult.CONTINUE;
                             }
                             if (owned(dir, uid)) {
-                                GraderSetup.deleteTree(dir);
+                                JavaBuild.deleteTreeQuietly(dir);
                                 return FileVisitResult.SKIP_SUBTREE;
                             }
                             // The child can only have written into folders every user may write.

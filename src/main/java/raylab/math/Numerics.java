@@ -1,8 +1,11 @@
 package raylab.math;
 
 /**
- * Named helpers for floating-point error, after pbrt: the relative error bound gamma(n) and
- * the scale-aware offset of a ray origin off a surface. {@code docs/numerics.md} explains each.
+ * Named helpers for floating-point error, after pbrt: the relative error bound gamma(n), the
+ * error bound of a computed hit point and the offset of a ray origin off a surface by that
+ * bound, as the reference {@code Shadows.isShadowed} uses them. {@code docs/numerics.md}
+ * explains each; the offsets used before this one are kept only by the study
+ * ({@code raylab.study.EarlierOffsets}).
  */
 public final class Numerics {
     /** Unit roundoff of double precision: 2^-53. */
@@ -19,62 +22,19 @@ public final class Numerics {
         return (n * MACHINE_EPSILON) / (1 - n * MACHINE_EPSILON);
     }
 
-    /**
-     * How far a shadow ray's origin is moved off a surface at hit point x: proportional to the
-     * size of x, so it covers the rounding error of the computed hit point at every scale.
-     * It is 2^10 ulps of the largest coordinate, and never less than {@link #MIN_OFFSET}.
-     */
-    public static double originOffset(Vec3 x) {
-        return Math.max(MIN_OFFSET, x.maxAbs() * OFFSET_SCALE);
-    }
-
-    /** The relative size of the offset: 2^-42, about 2^10 units in the last place. */
-    public static final double OFFSET_SCALE = 0x1p-42;
-
     /** Smallest offset, for hit points at the origin. */
     public static final double MIN_OFFSET = 0x1p-60;
 
     /**
-     * Moves x off the surface with unit normal n, to the side that direction w points into.
-     * A ray leaving the result along w cannot hit the surface it started on because of rounding.
-     */
-    public static Vec3 offsetRayOrigin(Vec3 x, Vec3 n, Vec3 w) {
-        double offset = originOffset(x);
-        return n.dot(w) >= 0 ? x.plus(n.times(offset)) : x.minus(n.times(offset));
-    }
-
-    /**
-     * The largest finite coordinate magnitude of a box (0 for an empty or unbounded box): a
-     * bound on the coordinates from which any hit point in the scene is computed.
+     * The largest finite coordinate magnitude of a box (0 for an empty or unbounded box): for a
+     * surface's box, a bound on the coordinates from which its hit points are computed.
      */
     public static double magnitude(BoundingBox box) {
         double m = Math.max(box.min.maxAbs(), box.max.maxAbs());
         return box.isEmpty() || !Double.isFinite(m) ? 0 : m;
     }
 
-    /** The relative size of the scene-aware offset: 2^-46, 64 to 128 units in the last place. */
-    public static final double SCENE_OFFSET_SCALE = 0x1p-46;
-
-    /**
-     * The scene-aware offset: 2^-46 times the larger of x's largest coordinate and the scene's
-     * magnitude ({@link #magnitude}), never less than {@link #MIN_OFFSET}. A hit point near the
-     * coordinate origin on a large triangle or sphere carries the rounding error of the large
-     * coordinates it was computed from, which the size of x alone does not show.
-     */
-    public static double originOffset(Vec3 x, double sceneMagnitude) {
-        return Math.max(MIN_OFFSET, Math.max(x.maxAbs(), sceneMagnitude) * SCENE_OFFSET_SCALE);
-    }
-
-    /**
-     * Moves x off the surface with unit normal n, to the side that w points into, by the
-     * scene-aware offset {@link #originOffset(Vec3, double)}.
-     */
-    public static Vec3 offsetRayOrigin(Vec3 x, Vec3 n, Vec3 w, double sceneMagnitude) {
-        double offset = originOffset(x, sceneMagnitude);
-        return n.dot(w) >= 0 ? x.plus(n.times(offset)) : x.minus(n.times(offset));
-    }
-
-    // ---- Local offsets: a bound on the error of each computed hit point (pbrt-v4 style) ----
+    // ---- The shadow-ray offset: a bound on the error of each computed hit point (pbrt-v4 style) ----
 
     /** Rounding steps the bound of {@link #pointError} allows for (see docs/numerics.md). */
     public static final int POINT_ERROR_STEPS = 8;

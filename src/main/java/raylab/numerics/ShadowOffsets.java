@@ -10,7 +10,8 @@ import raylab.surface.Surface;
 
 /**
  * Ways to start a shadow ray, all with the signature of {@link Shadows#isShadowed}: the shadow
- * ray runs from (a point near) x to the light, t in [0, 1].
+ * ray runs from (a point near) x to the light, t in [0, 1]. The offsets the reference used
+ * before its local one are the study's own ({@code raylab.study.EarlierOffsets}).
  */
 public final class ShadowOffsets {
     private ShadowOffsets() {
@@ -40,33 +41,6 @@ public final class ShadowOffsets {
         Vec3 toLight = light.position.minus(x);
         Vec3 offset = n.times(n.dot(toLight) >= 0 ? Shadows.EPSILON : -Shadows.EPSILON);
         Vec3 origin = x.plus(offset);
-        Ray shadowRay = new Ray(origin, light.position.minus(origin), Double.MIN_VALUE, Math.nextDown(1.0));
-        return scene.intersectsAny(shadowRay, scratch);
-    }
-
-    /**
-     * An offset proportional to the magnitude of x alone, 2^-42·max|x_i| along the normal
-     * ({@link Numerics#offsetRayOrigin(Vec3, Vec3, Vec3)}). Right at every scale and translation
-     * except near the coordinate origin, where x is small but was computed from large
-     * coordinates (a big ground triangle through the origin): acne there.
-     */
-    public static boolean hitPointScaled(Surface scene, Vec3 x, Vec3 n, PointLight light,
-            IntersectionRecord scratch) {
-        Vec3 origin = Numerics.offsetRayOrigin(x, n, light.position.minus(x));
-        Ray shadowRay = new Ray(origin, light.position.minus(origin), Double.MIN_VALUE, Math.nextDown(1.0));
-        return scene.intersectsAny(shadowRay, scratch);
-    }
-
-    /**
-     * The scene-global offset (the reference before the local one): 2^-46 times the larger of
-     * max|x_i| and the scene's magnitude ({@link Numerics#offsetRayOrigin(Vec3, Vec3, Vec3, double)}).
-     * Right at every scale and translation, but one object far away makes the offset large
-     * everywhere: a leaf just above the ground then leaks light.
-     */
-    public static boolean sceneGlobal(Surface scene, Vec3 x, Vec3 n, PointLight light,
-            IntersectionRecord scratch) {
-        double magnitude = Numerics.magnitude(scene.boundingBox());
-        Vec3 origin = Numerics.offsetRayOrigin(x, n, light.position.minus(x), magnitude);
         Ray shadowRay = new Ray(origin, light.position.minus(origin), Double.MIN_VALUE, Math.nextDown(1.0));
         return scene.intersectsAny(shadowRay, scratch);
     }

@@ -247,7 +247,6 @@ public final class StudentServer {
                 case Wire.DEFINE -> define(f);
                 case Wire.METHOD -> method(f);
                 case Wire.CALL -> call(f);
-                case Wire.BATCH -> batch(f);
                 case Wire.MULTI -> multi(f);
                 default -> throw new Wire.ProtocolException("unexpected frame type " + f.type());
             }
@@ -278,7 +277,7 @@ public final class StudentServer {
         try {
             made = construct(Class.forName(cls), args);
         } catch (Throwable e) {
-            replyThrow(f.conv(), -1, unwrap(e));
+            replyThrow(f.conv(), unwrap(e));
             return;
         }
         Object old = handles.put(handle, made);
@@ -339,7 +338,7 @@ public final class StudentServer {
             }
             methods.put(id, found);
         } catch (Throwable e) {
-            replyThrow(f.conv(), -1, unwrap(e));
+            replyThrow(f.conv(), unwrap(e));
             return;
         }
         reply.reset();
@@ -374,40 +373,13 @@ public final class StudentServer {
         try {
             result = invoke(m, target, args);
         } catch (Throwable e) {
-            replyThrow(f.conv(), -1, e);
+            replyThrow(f.conv(), e);
             return;
         }
         reply.reset();
         writeResult(reply, result, args);
         reply.writeString(drainOutput());
         send(Wire.RETURN, f.conv());
-    }
-
-    private void batch(Wire.Frame f) throws IOException {
-        Wire.In in = f.in();
-        Method m = methodOf(in.readInt());
-        Object target = Wire.readValue(in, refs);
-        int calls = in.readInt();
-        if (calls < 0 || calls > in.end - in.pos) {
-            throw new Wire.ProtocolException("bad batch size " + calls);
-        }
-        Wire.Out results = new Wire.Out();
-        for (int i = 0; i < calls; i++) {
-            Object[] args = readArgs(in, in.readInt());
-            Object result;
-            try {
-                result = invoke(m, target, args);
-            } catch (Throwable e) {
-                replyThrow(f.conv(), i, e);
-                return;
-            }
-            writeResult(results, result, args);
-        }
-        reply.reset();
-        reply.writeInt(calls);
-        reply.write(results);
-        reply.writeString(drainOutput());
-        send(Wire.BATCH_RETURN, f.conv());
     }
 
     /**
@@ -552,9 +524,8 @@ public final class StudentServer {
         return e instanceof InvocationTargetException && e.getCause() != null ? e.getCause() : e;
     }
 
-    private void replyThrow(int conv, int index, Throwable e) throws IOException {
+    private void replyThrow(int conv, Throwable e) throws IOException {
         reply.reset();
-        reply.writeInt(index);
         writeThrowable(reply, e);
         reply.writeString(drainOutput());
         send(Wire.THROW, conv);

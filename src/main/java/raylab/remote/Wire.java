@@ -59,10 +59,7 @@ public final class Wire {
     public static final byte CB_RETURN = 7;
     /** Grader: {@code [String message]}. */
     public static final byte CB_THROW = 8;
-    /** Grader: {@code [int method][value target][int calls][int n][values]...} many calls at once. */
-    public static final byte BATCH = 9;
-    /** Student: {@code [int calls]([value result][records])... [String output]}. */
-    public static final byte BATCH_RETURN = 10;
+    // 9 and 10 were BATCH / BATCH_RETURN (many calls of one method), retired for MULTI.
     /** Either side: the empty reply to DEFINE and METHOD. */
     public static final byte ACK = 11;
     /**

@@ -59,9 +59,9 @@ final class ShadowExperiment implements Experiment {
             case 3:
                 return FixedOffset.isShadowed(1e-3, scene, x, n, light, scratch);
             case 4:
-                return ShadowOffsets.hitPointScaled(scene, x, n, light, scratch);
+                return EarlierOffsets.hitPointScaled(scene, x, n, light, scratch);
             case 5:
-                return ShadowOffsets.sceneGlobal(scene, x, n, light, scratch);
+                return EarlierOffsets.sceneGlobal(scene, x, n, light, scratch);
             default:
                 return ShadowOffsets.localOffset(scene, x, n, light, scratch);
         }

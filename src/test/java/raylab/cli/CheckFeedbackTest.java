@@ -12,7 +12,6 @@ import java.nio.file.Files;
 import java.nio.file.Path;
 import java.util.List;
 import java.util.Map;
-import java.util.stream.Stream;
 
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
@@ -22,6 +21,7 @@ import com.fasterxml.jackson.databind.ObjectMapper;
 
 import raylab.course.Assignment;
 import raylab.course.Assignments;
+import raylab.course.FileTrees;
 import raylab.course.GradingPlan;
 import raylab.course.JavaBuild;
 import raylab.course.MilestoneBuild;
@@ -40,17 +40,7 @@ class CheckFeedbackTest {
     /** The parts of the project check reads, copied (renders and build output go into the copy). */
     static Path copyLayout(Path root, Path to) throws IOException {
         for (String d : List.of("assignments", "scenes", "src/test/java", "grader/tests/raylab/cases")) {
-            Path from = root.resolve(d);
-            try (Stream<Path> s = Files.walk(from)) {
-                for (Path p : (Iterable<Path>) s::iterator) {
-                    Path t = to.resolve(root.relativize(p).toString());
-                    if (Files.isDirectory(p)) {
-                        Files.createDirectories(t);
-                    } else {
-                        Files.copy(p, t);
-                    }
-                }
-            }
+            FileTrees.copy(root.resolve(d), to.resolve(d));
         }
         return to;
     }

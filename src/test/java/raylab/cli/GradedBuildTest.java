@@ -30,6 +30,7 @@ import com.fasterxml.jackson.databind.ObjectMapper;
 
 import raylab.course.Assignment;
 import raylab.course.Assignments;
+import raylab.course.FileTrees;
 import raylab.course.GradedBuild;
 import raylab.course.JavaBuild;
 
@@ -56,7 +57,7 @@ class GradedBuildTest {
     static void project() throws IOException {
         copy = CheckFeedbackTest.copyLayout(root, dir.resolve("project"));
         SortedMap<String, byte[]> released = new TreeMap<>();
-        IncrementalTest.copyTree(root.resolve("src/main/java"), copy.resolve("src/main/java"));
+        FileTrees.copy(root.resolve("src/main/java"), copy.resolve("src/main/java"));
         try (Stream<Path> s = Files.walk(root.resolve("src/main/java"))) {
             for (Path p : s.filter(Files::isRegularFile).toList()) {
                 released.put(root.relativize(p).toString().replace('\\', '/'), Files.readAllBytes(p));

@@ -17,6 +17,7 @@ import java.util.List;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
 
+import raylab.course.FileTrees;
 import raylab.course.JavaBuild;
 
 /**
@@ -30,7 +31,7 @@ class IncrementalTest {
 
     /** A project folder with the real assignments, Sphere.java and Vec3.java, built at t = 1000 s. */
     static Path project(Path dir) throws IOException {
-        copyTree(Path.of("assignments"), dir.resolve("assignments"));
+        FileTrees.copy(Path.of("assignments"), dir.resolve("assignments"));
         for (String f : List.of(SPHERE, VEC3)) {
             Files.createDirectories(dir.resolve(f).getParent());
             Files.copy(Path.of(f), dir.resolve(f));
@@ -120,18 +121,5 @@ class IncrementalTest {
             }
         }
         return -1;
-    }
-
-    static void copyTree(Path from, Path to) throws IOException {
-        try (var s = Files.walk(from)) {
-            for (Path p : s.toList()) {
-                Path q = to.resolve(from.relativize(p).toString());
-                if (Files.isDirectory(p)) {
-                    Files.createDirectories(q);
-                } else {
-                    Files.copy(p, q);
-                }
-            }
-        }
     }
 }

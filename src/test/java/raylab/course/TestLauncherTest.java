@@ -50,7 +50,7 @@ class TestLauncherTest {
                 """);
         List<TestResult> expected = TestLauncher.discover(classPath(classes), classes, List.of("demo"), List.of(), dir);
         assertEquals(2, expected.size(), "discovered: " + expected);
-        TestLauncher.Outcome o = TestLauncher.run(classPath(classes), classes, List.of("demo"), List.of(),
+        TestLauncher.Run o = TestLauncher.run(classPath(classes), classes, List.of("demo"), List.of(),
                 TestLauncher.Limits.DEFAULT, dir, expected);
         Map<String, TestResult> byMethod = o.results().stream()
                 .collect(Collectors.toMap(TestResult::method, r -> r));
@@ -74,7 +74,7 @@ class TestLauncherTest {
                 }
                 """);
         List<TestResult> expected = TestLauncher.discover(classPath(classes), classes, List.of(), List.of(), dir);
-        TestLauncher.Outcome o = TestLauncher.run(classPath(classes), classes, List.of(), List.of(),
+        TestLauncher.Run o = TestLauncher.run(classPath(classes), classes, List.of(), List.of(),
                 new TestLauncher.Limits(256, Duration.ofSeconds(60), 5, 1024), dir, expected);
         Map<String, TestResult.Status> s = o.results().stream()
                 .collect(Collectors.toMap(TestResult::method, TestResult::status));
@@ -132,7 +132,7 @@ class TestLauncherTest {
                 }
                 """);
         List<TestResult> expected = TestLauncher.discover(classPath(classes), classes, List.of(), List.of(), dir);
-        TestLauncher.Outcome o = TestLauncher.run(classPath(classes), classes, List.of(), List.of(),
+        TestLauncher.Run o = TestLauncher.run(classPath(classes), classes, List.of(), List.of(),
                 new TestLauncher.Limits(256, Duration.ofSeconds(60), 5, 1024), dir, expected);
         assertEquals(1, o.results().size(), o.results().toString());
         assertEquals(TestResult.Status.FAILED, o.results().get(0).status());
@@ -184,7 +184,7 @@ class TestLauncherTest {
         List<TestResult> expected = TestLauncher.discover(classPath(classes), classes, List.of(),
                 List.of("demo.FirstTest", "demo.SecondTest"), dir);
         assertEquals(2, expected.size(), "discovered: " + expected);
-        TestLauncher.Outcome o = TestLauncher.run(classPath(classes), classes, List.of(),
+        TestLauncher.Run o = TestLauncher.run(classPath(classes), classes, List.of(),
                 List.of("demo.FirstTest", TestLauncher.thenBoundary(second), "demo.SecondTest"),
                 TestLauncher.Limits.DEFAULT, dir, expected, List.of(), List.of("-Draylab.boundary=" + first));
         assertTrue(o.finished(), "run should finish: " + o.problem());

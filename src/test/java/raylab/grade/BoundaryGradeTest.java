@@ -22,7 +22,7 @@ import com.fasterxml.jackson.databind.ObjectMapper;
 import raylab.cli.Main;
 
 /**
- * The grader behind the process boundary ({@code raylab.grade.boundary=true}), sphere milestone:
+ * The grader behind the process boundary, sphere milestone:
  * the reference scores every point, and a probing submission's student process reaches no
  * reference class of another milestone, no second Sphere, no hidden test, no grader class and
  * no reference image (it says what it found in every failing test's message).
@@ -35,22 +35,12 @@ class BoundaryGradeTest {
         Path out = dir.resolve("out-" + sub.getFileName());
         Files.createDirectories(out);
         ByteArrayOutputStream err = new ByteArrayOutputStream();
-        String old = System.getProperty("raylab.grade.boundary");
-        System.setProperty("raylab.grade.boundary", "true");
-        try {
-            int status = Main.run(new PrintWriter(new ByteArrayOutputStream(), true),
-                    new PrintWriter(err, true, StandardCharsets.UTF_8), "grade", sub.toString(), "--out", out.toString(),
-                    "--root", Path.of(System.getProperty("raylab.grade.root", ".")).toAbsolutePath().normalize().toString(), "--quiet", "--milestone", "sphere", "--test-timeout", "20",
-                    "--milestone-timeout", "200", "--scene-timeout", "200", "--heap", "256", "--sandbox-user",
-                    GraderTest.sandboxUser());
-            assertEquals(0, status, () -> "grade should succeed: " + err.toString(StandardCharsets.UTF_8));
-        } finally {
-            if (old == null) {
-                System.clearProperty("raylab.grade.boundary");
-            } else {
-                System.setProperty("raylab.grade.boundary", old);
-            }
-        }
+        int status = Main.run(new PrintWriter(new ByteArrayOutputStream(), true),
+                new PrintWriter(err, true, StandardCharsets.UTF_8), "grade", sub.toString(), "--out", out.toString(),
+                "--root", Path.of(System.getProperty("raylab.grade.root", ".")).toAbsolutePath().normalize().toString(), "--quiet", "--milestone", "sphere", "--test-timeout", "20",
+                "--milestone-timeout", "200", "--scene-timeout", "200", "--heap", "256", "--sandbox-user",
+                GraderTest.sandboxUser());
+        assertEquals(0, status, () -> "grade should succeed: " + err.toString(StandardCharsets.UTF_8));
         return new ObjectMapper().readTree(out.resolve("results.json").toFile());
     }
 

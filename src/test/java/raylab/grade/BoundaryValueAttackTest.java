@@ -24,6 +24,7 @@ import com.fasterxml.jackson.databind.ObjectMapper;
 import raylab.cli.Main;
 import raylab.course.Assignment;
 import raylab.course.Assignments;
+import raylab.course.JavaBuild;
 import raylab.course.SolutionRegions;
 
 /**
@@ -99,7 +100,7 @@ class BoundaryValueAttackTest {
                     + most);
             return new Graded(score, most, r.toString());
         } finally {
-            GraderSetup.deleteTree(work);
+            JavaBuild.deleteTreeQuietly(work);
         }
     }
 

@@ -21,6 +21,7 @@ import com.fasterxml.jackson.databind.ObjectMapper;
 import com.fasterxml.jackson.databind.node.ObjectNode;
 
 import raylab.cli.Main;
+import raylab.course.FileTrees;
 import raylab.grade.platform.PrairieLearn;
 
 /**
@@ -40,7 +41,7 @@ class CourseCheckTest {
         Path project = Path.of("").toAbsolutePath();
         Path root = dir.resolve(name);
         for (String f : List.of("assignments", "scenes", "grader/tests", "src/test/java", "src/main/java")) {
-            PlatformBundlesIT.copyTree(project.resolve(f), root.resolve(f));
+            FileTrees.copy(project.resolve(f), root.resolve(f));
         }
         return root;
     }

@@ -22,6 +22,7 @@ import com.fasterxml.jackson.databind.JsonNode;
 import com.fasterxml.jackson.databind.ObjectMapper;
 import com.fasterxml.jackson.databind.node.ObjectNode;
 
+import raylab.course.FileTrees;
 import raylab.grade.GradeReport.Kind;
 import raylab.grade.platform.PrairieLearn;
 
@@ -146,7 +147,7 @@ class FailedGradingTest {
     void pointsThatDoNotAddUpFailTheGradingOnEveryPlatform() throws IOException {
         Path root = dir.resolve("course");
         Path project = Path.of("").toAbsolutePath();
-        PlatformBundlesIT.copyTree(project.resolve("assignments"), root.resolve("assignments"));
+        FileTrees.copy(project.resolve("assignments"), root.resolve("assignments"));
         Path a = root.resolve("assignments/02-box/assignment.json");
         ObjectNode n = (ObjectNode) JSON.readTree(a.toFile());
         n.put("points", n.get("points").asInt() + 1);

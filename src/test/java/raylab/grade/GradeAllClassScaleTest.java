@@ -28,6 +28,7 @@ import org.junit.jupiter.api.io.TempDir;
 import com.fasterxml.jackson.databind.JsonNode;
 import com.fasterxml.jackson.databind.ObjectMapper;
 
+import raylab.course.FileTrees;
 import raylab.grade.platform.ClassScale;
 
 /**
@@ -61,7 +62,7 @@ class GradeAllClassScaleTest {
         Files.copy(ref.resolve("Box.java"), subs.resolve("ref/Box.java"));
         expected.put("ref", 15.0);
         for (String bug : List.of("bugs3", "bugs4")) {
-            GradeAllTest.copy(GraderTest.submission(dir, bug), subs.resolve(bug));
+            FileTrees.copy(GraderTest.submission(dir, bug), subs.resolve(bug));
             expected.put(bug, Double.NaN);
         }
         Files.createDirectories(subs.resolve("compile-error"));

@@ -28,6 +28,7 @@ import com.fasterxml.jackson.databind.ObjectMapper;
 import raylab.cli.Main;
 import raylab.course.Assignment;
 import raylab.course.Assignments;
+import raylab.course.FileTrees;
 import raylab.course.SolutionRegions;
 
 /**
@@ -51,7 +52,7 @@ class GradeAllTest {
         Path subs = Files.createDirectories(dir.resolve("submissions"));
         Path ref = GraderTest.submission(dir, "reference");
         Map<String, Double> expected = new LinkedHashMap<>(); // the box points, where known exactly
-        copy(ref, subs.resolve("ref-flat"));
+        FileTrees.copy(ref, subs.resolve("ref-flat"));
         expected.put("ref-flat", 15.0);
         zip(ref, subs.resolve("ref-zip.zip"), "");
         expected.put("ref-zip", 15.0);
@@ -68,7 +69,7 @@ class GradeAllTest {
         zip(layout, subs.resolve("ref-wrapped.zip"), "raylab-main/");
         expected.put("ref-wrapped", 15.0);
         for (String corpus : List.of("alternatives", "alternatives2", "bugs1", "bugs2", "bugs3", "bugs4", "hostile1", "hostile2")) {
-            copy(GraderTest.submission(dir, corpus), subs.resolve(corpus));
+            FileTrees.copy(GraderTest.submission(dir, corpus), subs.resolve(corpus));
         }
         expected.put("alternatives", 15.0);   // no Box.java of its own: the reference box
         expected.put("alternatives2", 15.0);  // the inverse-direction box
@@ -174,19 +175,6 @@ class GradeAllTest {
         assertTrue(after.contains("ref-flat,15,15,graded"), after.toString());
         assertTrue(after.stream().anyMatch(l -> l.startsWith("only-box,") && !l.startsWith("only-box,15,")),
                 "the changed submission graded again: " + after);
-    }
-
-    static void copy(Path from, Path to) throws Exception {
-        try (Stream<Path> s = Files.walk(from)) {
-            for (Path p : (Iterable<Path>) s::iterator) {
-                Path t = to.resolve(from.relativize(p).toString());
-                if (Files.isDirectory(p)) {
-                    Files.createDirectories(t);
-                } else {
-                    Files.copy(p, t);
-                }
-            }
-        }
     }
 
     static void zip(Path from, Path zip, String prefix) throws Exception {

@@ -31,6 +31,7 @@ import com.fasterxml.jackson.databind.ObjectMapper;
 import raylab.cli.Main;
 import raylab.course.Assignment;
 import raylab.course.Assignments;
+import raylab.course.JavaBuild;
 import raylab.course.SolutionRegions;
 import raylab.course.TestLauncher;
 
@@ -340,7 +341,7 @@ class GraderAttackTest {
                     + " of " + max);
             return new Graded(r, text, score, max, milestonesOf(attacks), keyDir, tag);
         } finally {
-            GraderSetup.deleteTree(work);
+            JavaBuild.deleteTreeQuietly(work);
             // What the attacks leave where nothing is isolated (modes user and none).
             Files.deleteIfExists(Path.of("/tmp/raylab-attack-" + tag + ".txt"));
             for (Path place : UidSlots.SHARED) {

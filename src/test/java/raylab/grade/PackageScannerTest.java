@@ -26,6 +26,8 @@ import com.sun.source.tree.CompilationUnitTree;
 import com.sun.source.util.JavacTask;
 
 import raylab.course.Assignments;
+import raylab.course.PackageScanner;
+import raylab.course.Submission;
 
 /**
  * The package line of a student file is found by a linear scan: huge comments, thousands of

@@ -25,6 +25,7 @@ import com.fasterxml.jackson.databind.ObjectMapper;
 import raylab.cli.Main;
 import raylab.course.Assignment;
 import raylab.course.Assignments;
+import raylab.course.FileTrees;
 import raylab.course.SolutionRegions;
 import raylab.course.release.Release;
 import raylab.grade.platform.PlatformSchemas;
@@ -154,7 +155,7 @@ class PlatformBundlesIT {
         Files.createDirectories(g.resolve("data"));
         Files.writeString(g.resolve("student").resolve(file), text);
         Files.writeString(g.resolve("data/data.json"), "{\"params\": {}, \"correct_answers\": {}, \"submitted_answers\": {\"_files\": []}}");
-        copyTree(sfc, g.resolve("serverFilesCourse/raylab"));
+        FileTrees.copy(sfc, g.resolve("serverFilesCourse/raylab"));
         List<String> cmd = new ArrayList<>(List.of("bash", entry[0].replace("/grade/", g + "/")));
         cmd.addAll(List.of(entry).subList(1, entry.length));
         Path log = dir.resolve("pl-" + name + ".log");
@@ -247,19 +248,6 @@ class PlatformBundlesIT {
             return s.length() <= 6000 ? s : "..." + s.substring(s.length() - 6000);
         } catch (java.io.IOException e) {
             return "(no log)";
-        }
-    }
-
-    static void copyTree(Path from, Path to) throws java.io.IOException {
-        try (Stream<Path> s = Files.walk(from)) {
-            for (Path p : (Iterable<Path>) s::iterator) {
-                Path t = to.resolve(from.relativize(p).toString());
-                if (Files.isDirectory(p)) {
-                    Files.createDirectories(t);
-                } else {
-                    Files.copy(p, t);
-                }
-            }
         }
     }
 }

@@ -22,6 +22,7 @@ import org.junit.jupiter.params.ParameterizedTest;
 import org.junit.jupiter.params.provider.ValueSource;
 
 import raylab.cli.Main;
+import raylab.course.FileTrees;
 
 /**
  * Issue 35 item 9: on PrairieLearn nothing secret is reachable under /grade. The job folder is
@@ -112,8 +113,8 @@ class PrairieLearnJobFolderIT {
         for (String d : List.of("serverFilesCourse", "tests", "student", "data")) {
             Files.createDirectories(job.resolve(d));
         }
-        PlatformBundlesIT.copyTree(course.resolve("serverFilesCourse/raylab"), job.resolve("serverFilesCourse/raylab"));
-        PlatformBundlesIT.copyTree(job.resolve("serverFilesCourse"), job.resolve("shared"));
+        FileTrees.copy(course.resolve("serverFilesCourse/raylab"), job.resolve("serverFilesCourse/raylab"));
+        FileTrees.copy(job.resolve("serverFilesCourse"), job.resolve("shared"));
         Files.writeString(job.resolve("student/Box.java"), probe(root, grade, control));
         Files.writeString(job.resolve("data/data.json"),
                 "{\"params\": {}, \"correct_answers\": {}, \"submitted_answers\": {\"_files\": []}}");

@@ -31,7 +31,7 @@ class SandboxLimitsTest {
 
     private static Sandbox namespace() {
         assumeTrue(Sandbox.namespacesWork(Sandbox.isRoot()), "unshare cannot create namespaces here");
-        return Sandbox.detect("", Sandbox.Mode.NAMESPACE, s -> { });
+        return Sandbox.detect("", Sandbox.Isolation.NAMESPACE, s -> { });
     }
 
     /** A child running {@code script} in {@code box}; output and error together. */

@@ -16,6 +16,7 @@ import com.fasterxml.jackson.databind.ObjectMapper;
 import com.fasterxml.jackson.databind.node.ObjectNode;
 
 import raylab.course.Assignment;
+import raylab.course.JavaBuild;
 import raylab.scene.SceneException;
 import raylab.scene.SceneLoader;
 
@@ -39,7 +40,7 @@ class SceneVariantsFuzzTest {
 
     @AfterAll
     static void cleanUp() {
-        GraderSetup.deleteTree(dir);
+        JavaBuild.deleteTreeQuietly(dir);
     }
 
     @FuzzTest(maxDuration = "60s")

@@ -32,6 +32,7 @@ import com.fasterxml.jackson.databind.node.ObjectNode;
 import raylab.cli.Main;
 import raylab.course.Assignment;
 import raylab.course.Assignments;
+import raylab.course.FileTrees;
 
 /** Variants are deterministic, vary with the seed, move only what their spec allows, and bad specs are one-line errors. */
 class SceneVariantsTest {
@@ -217,16 +218,7 @@ class SceneVariantsTest {
     private Path project() throws IOException {
         Path p = dir.resolve("project");
         for (String d : List.of("assignments", "scenes")) {
-            try (Stream<Path> s = Files.walk(root.resolve(d))) {
-                for (Path f : (Iterable<Path>) s::iterator) {
-                    Path t = p.resolve(root.relativize(f).toString());
-                    if (Files.isDirectory(f)) {
-                        Files.createDirectories(t);
-                    } else {
-                        Files.copy(f, t);
-                    }
-                }
-            }
+            FileTrees.copy(root.resolve(d), p.resolve(d));
         }
         return p;
     }

@@ -17,6 +17,7 @@ import com.code_intelligence.jazzer.junit.FuzzTest;
 
 import raylab.course.Assignment;
 import raylab.course.Assignments;
+import raylab.course.Submission;
 import raylab.fuzzing.OneLine;
 
 /**

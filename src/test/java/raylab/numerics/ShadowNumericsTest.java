@@ -21,6 +21,7 @@ import raylab.math.Color;
 import raylab.math.Vec3;
 import raylab.ray.IntersectionRecord;
 import raylab.ray.Ray;
+import raylab.study.EarlierOffsets;
 import raylab.surface.Group;
 import raylab.surface.Sphere;
 import raylab.surface.Surface;
@@ -178,9 +179,9 @@ class ShadowNumericsTest {
     void referenceHasNoAcneAndNoLeaks(double s, double translation) {
         long seed = Double.hashCode(s) * 131L + Double.hashCode(translation);
         Counts k = run(ShadowOffsets::localOffset, seed, s, translation, 3);
-        Counts global = run(ShadowOffsets::sceneGlobal, seed, s, translation, 3);
+        Counts global = run(EarlierOffsets::sceneGlobal, seed, s, translation, 3);
         Counts fixed = run(ShadowOffsets::fixedEpsilon, seed, s, translation, 3);
-        Counts xOnly = run(ShadowOffsets::hitPointScaled, seed, s, translation, 3);
+        Counts xOnly = run(EarlierOffsets::hitPointScaled, seed, s, translation, 3);
         Counts none = run(ShadowOffsets::none, seed, s, translation, 3);
         System.out.printf("shadows s=%g T=%g: %d acne cases, %d leak cases; acne/leaks reference"
                 + " %d/%d, scene-global %d/%d, fixed 1e-6 %d/%d, |x|-only 2^-42 %d/%d, no offset %d/%d%n", s,
@@ -222,7 +223,7 @@ class ShadowNumericsTest {
      *  on triangles. The count pins that: a change of the rule shows here first. */
     @Test
     void hitPointOnlyOffsetNearTheOriginIsSavedByTheTriangleTZeroRule() {
-        Counts k = run(ShadowOffsets::hitPointScaled, 98, 1, 0, 3);
+        Counts k = run(EarlierOffsets::hitPointScaled, 98, 1, 0, 3);
         assertTrue(k.acneCases > 1000, "seed 98: acne cases tried: " + k);
         assertEquals(0, k.acne, "seed 98: a shadow ray starting within rounding of the ground's plane"
                 + " meets it at t = 0, which the range 0 < t < 1 excludes: " + k);
@@ -245,7 +246,7 @@ class ShadowNumericsTest {
     void farObjectDoesNotMakeTheLeafLeak(double translation) {
         long seed = 1012 + (long) translation;
         Counts local = run(ShadowOffsets::localOffset, seed, 1, translation, 3, 1e12);
-        Counts global = run(ShadowOffsets::sceneGlobal, seed, 1, translation, 3, 1e12);
+        Counts global = run(EarlierOffsets::sceneGlobal, seed, 1, translation, 3, 1e12);
         System.out.printf("shadows, object 1e12 away, T=%g: local acne %d/%d leaks %d/%d;"
                 + " scene-global acne %d leaks %d%n", translation, local.acne, local.acneCases,
                 local.leaks, local.leakCases, global.acne, global.leaks);

@@ -117,7 +117,7 @@ public final class AddTestCommand extends AssignmentCommand.Base implements Call
                     + (buggy == null ? "" : "; on " + buggy.getFileName() + " " + checked.failedOnBuggy().size()
                             + " fail: " + String.join(", ", checked.failedOnBuggy())));
         } finally {
-            Release.deleteTree(work);
+            JavaBuild.deleteTree(work);
         }
         Path jsonFile = root.resolve(a.folder()).resolve("assignment.json");
         String json = Files.readString(jsonFile, StandardCharsets.UTF_8);

@@ -13,6 +13,7 @@ import java.util.concurrent.TimeUnit;
 import java.util.regex.Matcher;
 import java.util.regex.Pattern;
 
+import raylab.course.JavaBuild;
 import raylab.course.release.ReleaseVerifier.Check;
 
 /**
@@ -40,7 +41,7 @@ final class BuildCheck {
             out.add(new Check("README commands", false, "no /bin/sh here: run them by hand"));
             return out;
         }
-        Release.deleteTree(copy);
+        JavaBuild.deleteTree(copy);
         copyTree(starter, copy);
 
         Ran build = sh(600, "./mvnw", "-q", "-o", "-B", "-DskipTests", "package");

@@ -30,6 +30,7 @@ import com.fasterxml.jackson.databind.node.ObjectNode;
 import raylab.course.Assignment;
 import raylab.course.Assignments;
 import raylab.course.GradingPlan;
+import raylab.course.JavaBuild;
 import raylab.course.SolutionRegions;
 import raylab.grade.ServiceFiles;
 
@@ -364,7 +365,7 @@ public final class Release {
         Path parent = target.getParent();
         Files.createDirectories(parent);
         Path partial = parent.resolve("." + target.getFileName() + ".partial-" + ProcessHandle.current().pid());
-        deleteTree(partial);
+        JavaBuild.deleteTree(partial);
         try {
             for (Map.Entry<String, byte[]> e : tree.files().entrySet()) {
                 Path f = partial.resolve(e.getKey());
@@ -372,14 +373,14 @@ public final class Release {
                 Files.write(f, e.getValue());
                 setMode(f, tree.executable().contains(e.getKey()));
             }
-            deleteTree(target);
+            JavaBuild.deleteTree(target);
             try {
                 Files.move(partial, target, StandardCopyOption.ATOMIC_MOVE);
             } catch (AtomicMoveNotSupportedException e) {
                 Files.move(partial, target);
             }
         } finally {
-            deleteTree(partial);
+            JavaBuild.deleteTree(partial);
         }
         return new Written(target, tree.files().size(), tree.milestones(), tree.stubbedFiles());
     }
@@ -391,25 +392,5 @@ public final class Release {
         } else {
             f.toFile().setExecutable(executable, false);
         }
-    }
-
-    /** Deletes a file or folder tree if it exists. */
-    static void deleteTree(Path p) throws IOException {
-        if (!Files.exists(p, java.nio.file.LinkOption.NOFOLLOW_LINKS)) {
-            return;
-        }
-        Files.walkFileTree(p, new SimpleFileVisitor<>() {
-            @Override
-            public FileVisitResult visitFile(Path file, BasicFileAttributes attrs) throws IOException {
-                Files.delete(file);
-                return FileVisitResult.CONTINUE;
-            }
-
-            @Override
-            public FileVisitResult postVisitDirectory(Path dir, IOException exc) throws IOException {
-                Files.delete(dir);
-                return FileVisitResult.CONTINUE;
-            }
-        });
     }
 }

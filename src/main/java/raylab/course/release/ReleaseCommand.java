@@ -12,6 +12,7 @@ import picocli.CommandLine.Option;
 import picocli.CommandLine.Spec;
 import raylab.cli.OptionalCommand;
 import raylab.cli.UserError;
+import raylab.course.JavaBuild;
 
 /**
  * {@code raylab release --out DIR}: writes the student starter and verifies it (instructor-only:
@@ -89,7 +90,7 @@ public final class ReleaseCommand implements Callable<Integer>, OptionalCommand 
             w.flush();
             return report.passed() ? 0 : 1;
         } finally {
-            Release.deleteTree(work);
+            JavaBuild.deleteTree(work);
         }
     }
 }

@@ -428,8 +428,8 @@ public final class ReleaseVerifier {
         List<Check> out = new ArrayList<>();
         mainClasses = work.resolve("starter-main");
         testClasses = work.resolve("starter-tests");
-        Release.deleteTree(mainClasses);
-        Release.deleteTree(testClasses);
+        JavaBuild.deleteTree(mainClasses);
+        JavaBuild.deleteTree(testClasses);
         List<Path> mainSources = JavaBuild.sourcesUnder(starter.resolve("src/main/java"));
         JavaBuild.Result m = JavaBuild.compile(mainSources, libraries, mainClasses);
         out.add(compiled("the starter's src/main/java compiles", m, mainSources.size()));
@@ -660,7 +660,7 @@ public final class ReleaseVerifier {
             }
         }
         Path dir = work.resolve("overlay").resolve(key);
-        Release.deleteTree(dir);
+        JavaBuild.deleteTree(dir);
         JavaBuild.Result r = MilestoneBuild.compileOverlay(files, dir.resolve("src"), cp(mainClasses),
                 dir.resolve("classes"));
         if (!r.success()) {
@@ -673,7 +673,7 @@ public final class ReleaseVerifier {
     private List<TestResult> runTests(Path overlay, String what) throws IOException {
         Path dir = work.resolve("runs").resolve(what);
         Files.createDirectories(dir);
-        TestLauncher.Outcome o = TestLauncher.run(cp(overlay, mainClasses, testClasses), testClasses, List.of(),
+        TestLauncher.Run o = TestLauncher.run(cp(overlay, mainClasses, testClasses), testClasses, List.of(),
                 List.of(), TestLauncher.Limits.DEFAULT, dir, expected);
         return o.results();
     }

@@ -16,6 +16,7 @@ import com.fasterxml.jackson.databind.SerializationFeature;
 import raylab.cli.UserError;
 import raylab.course.Assignment;
 import raylab.course.Assignments;
+import raylab.course.JavaBuild;
 
 /**
  * {@code raylab bundle classroom50 --out DIR}: the files for the teacher's {@code classroom50}
@@ -117,7 +118,7 @@ public final class Classroom50Bundle {
             Files.move(tmp, target, StandardCopyOption.ATOMIC_MOVE);
         } finally {
             if (Files.exists(tmp)) {
-                PrairieLearnBundle.deleteTree(tmp);
+                JavaBuild.deleteTree(tmp);
             }
         }
     }

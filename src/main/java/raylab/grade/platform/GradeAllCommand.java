@@ -39,6 +39,7 @@ import raylab.cli.OptionalCommand;
 import raylab.cli.UserError;
 import raylab.course.Assignment;
 import raylab.course.Assignments;
+import raylab.course.JavaBuild;
 
 /**
  * {@code raylab grade-all SUBMISSIONS_DIR --out DIR}: grades every submission of a class. Each
@@ -323,7 +324,7 @@ public final class GradeAllCommand implements Callable<Integer>, OptionalCommand
             // What an earlier (stopped) grading left is never taken for this one's result.
             Files.deleteIfExists(dir.resolve("results.json"));
             String digest = digest(submission);
-            List<String> cmd = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString()));
+            List<String> cmd = new ArrayList<>(List.of(JavaBuild.javaExecutable()));
             cmd.addAll(raylab.grade.JvmOptions.GRADER);
             cmd.addAll(List.of("-cp", System.getProperty("java.class.path"), "raylab.cli.Main", "grade",
                     submission.toAbsolutePath().toString(), "--out", dir.toString(), "--root", r.toString(), "--quiet",

@@ -18,6 +18,7 @@ import com.fasterxml.jackson.databind.SerializationFeature;
 import raylab.cli.UserError;
 import raylab.course.Assignment;
 import raylab.course.Assignments;
+import raylab.course.JavaBuild;
 
 /**
  * {@code raylab bundle prairielearn --out DIR}: a folder laid out like a PrairieLearn course
@@ -120,7 +121,7 @@ public final class PrairieLearnBundle {
             Files.move(tmp, target, StandardCopyOption.ATOMIC_MOVE);
         } finally {
             if (Files.exists(tmp)) {
-                deleteTree(tmp);
+                JavaBuild.deleteTree(tmp);
             }
         }
     }
@@ -199,13 +200,5 @@ public final class PrairieLearnBundle {
 
     private static void write(Path p, String text) throws IOException {
         Files.writeString(p, text, StandardCharsets.UTF_8);
-    }
-
-    static void deleteTree(Path root) throws IOException {
-        try (var s = Files.walk(root)) {
-            for (Path p : (Iterable<Path>) s.sorted(java.util.Comparator.reverseOrder())::iterator) {
-                Files.deleteIfExists(p);
-            }
-        }
     }
 }

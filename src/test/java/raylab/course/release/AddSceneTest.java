@@ -13,7 +13,6 @@ import java.nio.file.Files;
 import java.nio.file.Path;
 import java.util.List;
 import java.util.Set;
-import java.util.stream.Stream;
 
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
@@ -24,6 +23,7 @@ import com.fasterxml.jackson.databind.ObjectMapper;
 import raylab.cli.Main;
 import raylab.course.Assignment;
 import raylab.course.Assignments;
+import raylab.course.FileTrees;
 import raylab.course.GradingPlan;
 import raylab.course.SolutionRegions;
 import raylab.render.ImageCompare;
@@ -59,23 +59,9 @@ class AddSceneTest {
 
     static Path copy(Path root, Path to) throws IOException {
         for (String d : List.of("assignments", "scenes", "grader", "src/main/java", "src/main/resources", "src/test/java")) {
-            copyTree(root.resolve(d), to.resolve(d));
+            FileTrees.copy(root.resolve(d), to.resolve(d));
         }
         return to;
-    }
-
-    /** Copies a folder and everything in it. */
-    static void copyTree(Path from, Path to) throws IOException {
-        try (Stream<Path> s = Files.walk(from)) {
-            for (Path p : (Iterable<Path>) s::iterator) {
-                Path t = to.resolve(from.relativize(p).toString());
-                if (Files.isDirectory(p)) {
-                    Files.createDirectories(t);
-                } else {
-                    Files.copy(p, t);
-                }
-            }
-        }
     }
 
     static String run(int expected, String... args) {

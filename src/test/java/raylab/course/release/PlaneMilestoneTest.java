@@ -22,6 +22,7 @@ import org.junit.jupiter.api.io.TempDir;
 import com.fasterxml.jackson.databind.JsonNode;
 import com.fasterxml.jackson.databind.ObjectMapper;
 
+import raylab.course.FileTrees;
 import raylab.course.JavaBuild;
 import raylab.course.SolutionRegions;
 
@@ -98,7 +99,7 @@ class PlaneMilestoneTest {
             }
         }
         assertTrue(ownCode != null, "raylab's classes are a folder on the test class path");
-        AddSceneTest.copyTree(ownCode, code);
+        FileTrees.copy(ownCode, code);
         JavaBuild.Result r = JavaBuild.compile(List.of(course.resolve(added.get(0)), course.resolve(added.get(1))),
                 JavaBuild.ownClassPath(), code);
         assertTrue(r.success(), () -> "the plane compiles: " + r.errors());
