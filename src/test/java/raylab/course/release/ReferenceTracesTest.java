@@ -53,6 +53,11 @@ class ReferenceTracesTest {
         assertEquals(List.of(), ReferenceTraces.problems(dir, new ArrayList<>(files.keySet())),
                 "every trace gives its reference image's colours");
 
+        assertEquals(2, raylab.inspect.TraceFile.strideFor(2000, 1000),
+                "a scene of 2000x1000 (over MAX_TRACED) keeps every 2nd pixel of every 2nd row (1000x500)");
+        assertEquals(3, raylab.inspect.TraceFile.strideFor(3000, 2000),
+                "a scene of 3000x2000 keeps every 3rd pixel of every 3rd row (1000x667)");
+
         long seed = 4040;
         java.util.SplittableRandom random = new java.util.SplittableRandom(seed);
         for (String scene : published) {
@@ -61,10 +66,8 @@ class ReferenceTracesTest {
             raylab.inspect.Tracer live = new raylab.inspect.Tracer(sc);
             int stride = raylab.inspect.TraceFile.strideFor(sc.width, sc.height);
             assertEquals(stride, stored.stride, scene + ": the trace's stride");
-            int expected = Map.of("scenes/showcase.json", 6, "scenes/mesh.json", 3).getOrDefault(scene,
-                    (long) sc.width * sc.height > raylab.inspect.TraceFile.MAX_TRACED ? 2 : 1);
-            assertEquals(expected, stride, scene + " (" + sc.width + "x" + sc.height + "): every pixel traced up to "
-                    + raylab.inspect.TraceFile.MAX_TRACED + " pixels, else every k-th pixel of every k-th row");
+            assertEquals(1, stride, scene + " (" + sc.width + "x" + sc.height + "): every pixel of a published scene"
+                    + " is traced (up to " + raylab.inspect.TraceFile.MAX_TRACED + " pixels)");
             for (int k = 0; k < 300; k++) {
                 int[] p = stored.traced(random.nextInt(sc.width), random.nextInt(sc.height));
                 int x = p[0];
