@@ -21,6 +21,7 @@ import java.util.Set;
 import java.util.SplittableRandom;
 import java.util.concurrent.atomic.AtomicInteger;
 
+import org.junit.jupiter.api.AfterAll;
 import org.junit.jupiter.api.BeforeAll;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
@@ -42,31 +43,109 @@ import raylab.course.TestLauncher;
  * results.json after the grader's last write) graded in each sandbox mode, and a grader that
  * itself overflows its stack or runs out of memory. Each attack must fail closed; what a mode
  * does not isolate (see grader/README.md) is not asserted for that mode, and says so.
+ *
+ * <p>The gradings are what take the time (about a minute each, a dozen of them), and most of a
+ * grading is its children's work under their own CPU limits and the waits past the detached
+ * forger: {@link #load} starts every grading the class's tests need, {@link #CONCURRENT} at a
+ * time, and each test waits for the ones it asserts on (docs/testing.md). Each grading has a
+ * tag of its own (its files, processes and covert channel are told apart by it) and, in mode
+ * none, a cache of its own (the one it poisons is thrown away while no other grading uses it).
  */
 class GraderAttackTest {
     static final ObjectMapper JSON = new ObjectMapper();
     static Path root;
     static Assignments assignments;
 
+    /**
+     * Whole-submission gradings run at once (and one single-milestone attack beside them). Each
+     * grading's children run under their own CPU limits; three gradings keep the 2-core machine
+     * busy while one of them waits on its renders' time-outs or the forger.
+     */
+    static final int CONCURRENT = Integer.getInteger("raylab.test.attack.concurrent", 2);
+    private static ConcurrentGradings<Graded> gradings;
+    private static ConcurrentGradings<Run> sphereAttacks;
+    /** Tags of the gradings, distinct within a run (31xxx for {@link #attack}, 41xxx for {@link #grade}). */
+    private static final AtomicInteger NEXT_TAG = new AtomicInteger(new SplittableRandom(System.nanoTime()).nextInt(8_000));
+
     @TempDir
     Path dir;
+
+    /** Folders of the single-milestone attack gradings (removed by JUnit after the class). */
+    @TempDir
+    static Path attackDir;
 
     @BeforeAll
     static void load() throws IOException {
         root = Path.of(System.getProperty("raylab.grade.root", ".")).toAbsolutePath().normalize();
         assignments = Assignments.load(root);
+        gradings = new ConcurrentGradings<>("attack-grading", CONCURRENT);
+        // The single-milestone attacks are short: one at a time beside the others.
+        sphereAttacks = new ConcurrentGradings<>("attack-grading-sphere", 1);
+        // Every grading the tests below assert on, in the order they ask for them (a test runs a
+        // grading it needs itself when no pool thread has begun it); none when single methods
+        // are selected (-Dtest=GraderAttackTest#one): each test grades what it needs.
+        if (ConcurrentGradings.oneTestSelected()) {
+            return;
+        }
+        // The shared cache built once here, not by each of the first gradings at the same time.
+        GraderSetup.prepare(root, assignments.all(), root.resolve("target/grader-cache"), s -> { });
+        boolean ns = namespaces();
+        boolean user = sandboxUserExists();
+        String sandboxUser = GraderTest.sandboxUser();
+        if (ns) {
+            gradedAsync(SUBMISSION_A, true, "namespace", sandboxUser);
+            gradedAsync(SUBMISSION_B, true, "namespace", sandboxUser);
+            gradedAsync(SUBMISSION_A, false, "namespace", "");
+            gradedAsync(SUBMISSION_B, false, "namespace", "");
+            attackAsync("namespace", sandboxUser);
+            attackAsync("namespace", "");
+        }
+        if (user) {
+            gradedAsync(SUBMISSION_A, true, "user", sandboxUser);
+            gradedAsync(SUBMISSION_B, true, "user", sandboxUser);
+            attackAsync("user", sandboxUser);
+        }
+        if (!ns) {
+            gradedAsync(SUBMISSION_A, false, "none", "");
+            gradedAsync(SUBMISSION_B, false, "none", "");
+        }
+        gradedAsync(SUBMISSION_A, true, "none", "");
+        gradedAsync(SUBMISSION_B, true, "none", "");
+        attackAsync("none", "");
+    }
+
+    /** Drops the gradings no test asked for, and waits for the ones running. */
+    @AfterAll
+    static void close() throws InterruptedException {
+        gradings.close();
+        sphereAttacks.close();
+    }
+
+    private static boolean sandboxUserExists() throws IOException {
+        return Sandbox.isRoot() && Files.readString(Path.of("/etc/passwd")).contains("\n" + GraderTest.sandboxUser() + ":");
     }
 
     /** What one attack run left behind. */
     record Run(JsonNode results, String prairielearn, int connections, String tag, Path out, Path cache, int status) {
     }
 
+    /** The attack grading of {@link #attackNow} in this mode with this user (once per JVM). */
+    private static Run attack(String mode, String user) throws Exception {
+        return sphereAttacks.get(mode + " " + user, () -> attackNow(mode, user));
+    }
+
+    /** Queues that attack grading. */
+    private static void attackAsync(String mode, String user) {
+        sphereAttacks.start(mode + " " + user, () -> attackNow(mode, user));
+    }
+
     /** Grades the attack submission (milestone sphere) in the given mode, with the given sandbox user ("" for none). */
-    private Run attack(String mode, String user) throws Exception {
-        long tag = 31_000 + new SplittableRandom(System.nanoTime()).nextInt(9_000);
+    private static Run attackNow(String mode, String user) throws Exception {
+        long tag = 31_000 + NEXT_TAG.getAndIncrement();
         // Mode none: the attack writes into every cache folder it can reach (it is not isolated
         // there), so a cache of its own; no other test's cache is poisoned by it.
         Path cache = root.resolve(mode.equals("none") ? "target/grader-cache-attack-none" : "target/grader-cache");
+        Path dir = Files.createDirectories(attackDir.resolve("tag-" + tag));
         Path out = Files.createDirectories(dir.resolve("out-" + mode));
         Path sub = Files.createDirectories(dir.resolve("sub-" + mode));
         for (Assignment a : assignments.all()) {
@@ -201,8 +280,7 @@ class GraderAttackTest {
 
     @Test
     void sandboxUserWithoutNamespaces() throws Exception {
-        assumeTrue(Sandbox.isRoot() && Files.readString(Path.of("/etc/passwd")).contains("\n" + GraderTest.sandboxUser() + ":"),
-                "needs root and the user " + GraderTest.sandboxUser() + " (.ci/run creates it)");
+        assumeTrue(sandboxUserExists(), "needs root and the user " + GraderTest.sandboxUser() + " (.ci/run creates it)");
         Run run = attack("user", GraderTest.sandboxUser());
         assertTrue(instructorsReport(run).contains("sandbox: user"), "the instructors' report names the sandbox mode");
         assertFailClosed(run);
@@ -257,8 +335,6 @@ class GraderAttackTest {
         }
     }
 
-    private static final java.util.Map<String, Graded> GRADED = new java.util.concurrent.ConcurrentHashMap<>();
-
     /** Milestones of the student files named. */
     private static List<String> milestonesOf(List<String> files) {
         List<String> out = new java.util.ArrayList<>();
@@ -274,22 +350,28 @@ class GraderAttackTest {
 
     /** Grades (once per JVM) the submission with these attack files armed or not, in a mode. */
     private static Graded graded(List<String> attacks, boolean armed, String mode, String user) throws Exception {
-        String key = attacks + " " + armed + " " + mode + " " + user;
-        Graded g = GRADED.get(key);
-        if (g == null) {
-            g = grade(attacks, armed, mode, user);
-            GRADED.put(key, g);
-        }
-        return g;
+        return gradings.get(key(attacks, armed, mode, user), () -> grade(attacks, armed, mode, user));
+    }
+
+    /** Queues that grading. */
+    private static void gradedAsync(List<String> attacks, boolean armed, String mode, String user) {
+        gradings.start(key(attacks, armed, mode, user), () -> grade(attacks, armed, mode, user));
+    }
+
+    private static String key(List<String> attacks, boolean armed, String mode, String user) {
+        return attacks + " " + armed + " " + mode + " " + user;
     }
 
     private static Graded grade(List<String> attacks, boolean armed, String mode, String user) throws Exception {
-        String tag = Integer.toString(41_000 + new SplittableRandom(System.nanoTime()).nextInt(9_000));
+        String tag = Integer.toString(41_000 + NEXT_TAG.getAndIncrement());
         Path work = Files.createTempDirectory("raylab-attacks");
         try {
             // Mode none poisons its cache (and must throw it away): a cache of its own, so that no
-            // other test grading at the same time loses the shared one.
-            Path cache = root.resolve(mode.equals("none") ? "target/grader-cache-none" : "target/grader-cache");
+            // other test grading at the same time loses the shared one; one per submission, as
+            // A's poisoned cache is thrown away while B may be grading.
+            Path cache = root.resolve(mode.equals("none")
+                    ? "target/grader-cache-none-" + (attacks.equals(SUBMISSION_A) ? "a" : attacks.equals(SUBMISSION_B) ? "b" : "other")
+                    : "target/grader-cache");
             Path out = Files.createDirectories(work.resolve("out"));
             Path sub = Files.createDirectories(work.resolve("sub"));
             Set<String> all = new java.util.TreeSet<>(assignments.ids());
@@ -312,13 +394,15 @@ class GraderAttackTest {
                 }
             }
             ByteArrayOutputStream err = new ByteArrayOutputStream();
-            // The attacked milestones' renders wait for their time-out (the sphere prints every ray it
-            // sees): 30 s, as the other gradings in the tests, instead of the default 60; the reference
-            // milestones' renders take a few seconds.
+            // The attacked milestones' renders run until their time-out (the sphere prints every ray
+            // it sees), spending the student's CPU budget of every scene: 10 s a scene, not the
+            // default 60 (the budget is the student's CPU time, so load does not shorten it); the
+            // reference milestones' renders take a few seconds of it. No test here is about that
+            // time-out: it only burned CPU (docs/testing.md).
             int status = Main.run(new PrintWriter(new ByteArrayOutputStream(), true),
                     new PrintWriter(err, true, StandardCharsets.UTF_8), "grade", sub.toString(), "--out", out.toString(),
                     "--root", root.toString(), "--quiet", "--test-timeout", "10", "--milestone-timeout", "120",
-                    "--scene-timeout", "30", "--heap", "256", "--sandbox", mode, "--sandbox-user", user, "--cache", cache.toString());
+                    "--scene-timeout", "10", "--heap", "256", "--sandbox", mode, "--sandbox-user", user, "--cache", cache.toString());
             assertEquals(0, status, () -> "graded: " + err);
             Thread.sleep(4_500); // past the detached forger's 4 s
             JsonNode r = JSON.readTree(out.resolve("results.json").toFile());
@@ -400,6 +484,19 @@ class GraderAttackTest {
         assertFalse(b.text().matches("(?s).*stack: found (?!nothing).*"), "no test framework or grader frame seen");
     }
 
+    /**
+     * Queues, beside the grading the test runs first (A armed), the others it asserts on: these
+     * armed submissions and both disarmed twins (a no-op for those begun or queued already).
+     */
+    private static void queue(List<List<String>> armed, String mode, String user) {
+        for (List<String> files : armed) {
+            gradedAsync(files, true, mode, user);
+        }
+        for (List<String> files : List.of(SUBMISSION_A, SUBMISSION_B)) {
+            gradedAsync(files, false, namespaces() ? "namespace" : "none", "");
+        }
+    }
+
     private static Graded disarmed(List<String> attacks) throws Exception {
         return graded(attacks, false, namespaces() ? "namespace" : "none", "");
     }
@@ -407,6 +504,7 @@ class GraderAttackTest {
     @Test
     void everyAttackClassInTheNamespaceSandbox() throws Exception {
         assumeTrue(namespaces(), "unshare cannot create namespaces here");
+        queue(List.of(SUBMISSION_B), "namespace", GraderTest.sandboxUser());
         Graded a = graded(SUBMISSION_A, true, "namespace", GraderTest.sandboxUser());
         Graded b = graded(SUBMISSION_B, true, "namespace", GraderTest.sandboxUser());
         // The PNG hook forges nothing already: the graded scenes are per-grading variants, whose
@@ -426,8 +524,8 @@ class GraderAttackTest {
 
     @Test
     void everyAttackClassWithTheSandboxUserWithoutNamespaces() throws Exception {
-        assumeTrue(Sandbox.isRoot() && Files.readString(Path.of("/etc/passwd")).contains("\n" + GraderTest.sandboxUser() + ":"),
-                "needs root and the user " + GraderTest.sandboxUser() + " (.ci/run creates it)");
+        assumeTrue(sandboxUserExists(), "needs root and the user " + GraderTest.sandboxUser() + " (.ci/run creates it)");
+        queue(List.of(SUBMISSION_B), "user", GraderTest.sandboxUser());
         Graded a = graded(SUBMISSION_A, true, "user", GraderTest.sandboxUser());
         Graded b = graded(SUBMISSION_B, true, "user", GraderTest.sandboxUser());
         assertNoForgedPointAndNoneLost(a, disarmed(SUBMISSION_A), Set.of());
@@ -440,6 +538,7 @@ class GraderAttackTest {
 
     @Test
     void everyAttackClassWithoutASandbox() throws Exception {
+        gradedAsync(SUBMISSION_B, true, "none", "");
         Graded a = graded(SUBMISSION_A, true, "none", "");
         Graded b = graded(SUBMISSION_B, true, "none", "");
         // Mode none isolates no file (README): the sphere can load its reference from the cache,
