@@ -27,7 +27,7 @@ public final class StudentFault {
 
     /**
      * Stuck student code ({@link raylab.course.Watchdog}): says {@code sentence} ("your code has
-     * run for 5 s in ... an endless loop? while rendering ...") as a one-line error and, run from
+     * run for 2 s in ... an endless loop? while rendering ...") as a one-line error and, run from
      * the command line, ends the JVM with exit status 1 ({@code Main.FAILED}): the stuck thread
      * cannot be stopped otherwise. Run in-process (a test calling {@link Main#run}), the JVM is not
      * ended: the line is said and the command goes on waiting.

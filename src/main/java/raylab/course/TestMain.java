@@ -148,20 +148,23 @@ public final class TestMain {
         // reported yet in a new one ("STUCK", TestLauncher). Behind the grader's process boundary
         // the student's code runs in another JVM, whose own watchdog names it (StudentServer).
         TestIdentifier[] running = {null};
+        List<String> watchedFiles = Watchdog.studentFiles(Path.of("").toAbsolutePath());
+        java.util.concurrent.atomic.AtomicBoolean ending = new java.util.concurrent.atomic.AtomicBoolean();
         Watchdog watchdog = studentTime != null || !watch ? null : Watchdog.start(Watchdog.bound(0),
-                Watchdog.studentFiles(Path.of("").toAbsolutePath()), stuck -> {
+                watchedFiles, stuck -> {
                     TestIdentifier t = running[0];
-                    if (t != null) {
-                        String id = t.getUniqueId();
-                        long t0 = started.getOrDefault(id, System.nanoTime());
-                        try {
-                            channel.send("RESULT " + json.writeValueAsString(toResult(t, TestResult.Status.TIMED_OUT,
-                                    stuck, captured.text(), (System.nanoTime() - t0) / 1_000_000)));
-                        } catch (Exception e) {
-                            channel.send("ERROR " + e.getClass().getSimpleName());
-                        }
-                        channel.send("STUCK " + id);
+                    if (t == null || !ending.compareAndSet(false, true)) {
+                        return; // between tests, or the test's end already says it
                     }
+                    String id = t.getUniqueId();
+                    long t0 = started.getOrDefault(id, System.nanoTime());
+                    try {
+                        channel.send("RESULT " + json.writeValueAsString(toResult(t, TestResult.Status.TIMED_OUT,
+                                stuck, captured.text(), (System.nanoTime() - t0) / 1_000_000)));
+                    } catch (Exception e) {
+                        channel.send("ERROR " + e.getClass().getSimpleName());
+                    }
+                    channel.send("STUCK " + id);
                     Runtime.getRuntime().halt(STUCK_EXIT);
                 });
         TestExecutionListener listener = new TestExecutionListener() {
@@ -205,6 +208,17 @@ public final class TestMain {
                     case ABORTED -> TestResult.Status.ABORTED;
                     case FAILED -> isTimeout(r) ? TestResult.Status.TIMED_OUT : TestResult.Status.FAILED;
                 };
+                if (watchdog != null && s == TestResult.Status.TIMED_OUT) {
+                    // JUnit's wall clock came first (a loaded machine: the bound is in CPU time), and
+                    // the test's thread may still run: named and ended as the watchdog does.
+                    java.util.Optional<String> where = Watchdog.stuck(Thread.getAllStackTraces(),
+                            watchedFiles, java.time.Duration.ofMillis(ms));
+                    if (where.isPresent() && ending.compareAndSet(false, true)) {
+                        send(t, s, where.get(), ms);
+                        channel.send("STUCK " + t.getUniqueId());
+                        Runtime.getRuntime().halt(STUCK_EXIT);
+                    }
+                }
                 if (watchdog != null) {
                     watchdog.next(Watchdog.bound(0));
                 }

@@ -12,15 +12,15 @@ import java.util.function.Consumer;
  * Names student code that stopped making progress: a daemon thread that, when no unit of work
  * (a tile of a render, a pixel of a trace, a test) has finished for {@link #bound()}, looks at the
  * stacks of every thread and, if one is inside a student file, reports where: "your code has run
- * for 5 s in Lambertian.diffuse (Lambertian.java:41) without returning: an endless loop?" (the
+ * for 2 s in Lambertian.diffuse (Lambertian.java:41) without returning: an endless loop?" (the
  * student's frames of a thread dump, innermost first, as raylab.cli.StudentFault names an exception
  * with the same helpers).
  * While no thread is in student code (the framework itself is busy) it keeps waiting.
  *
  * <p>The bound: {@link #TIMES_REFERENCE} times the reference's own time for one unit of work,
- * at least {@link #FLOOR} (the reference finishes a tile, a pixel or a call in milliseconds, so
- * the floor rules for renders, traces and the grader's calls; a visible test has its own recorded
- * time, {@link ReferenceTimes}). It is counted in CPU time of this process (the machine's load is
+ * at least {@link #FLOOR} (the reference finishes a tile, a pixel, a call of the grader's or a
+ * visible test in far less, so the floor rules: no reference time per unit is recorded yet, and
+ * {@code bound(0)} is the floor). It is counted in CPU time of this process (the machine's load is
  * not the student's: a busy loop uses a CPU all the time it runs), or, for code that waits instead
  * of running, in wall time at {@link #WALL_TIMES} times the bound. Shared by {@code render},
  * {@code trace} and {@code check} (its renders and its tests); the grader's student process has a
@@ -127,6 +127,15 @@ public final class Watchdog implements AutoCloseable {
         return wallNanos >= WALL_TIMES * b ? Duration.ofNanos(wallNanos) : null;
     }
 
+    /**
+     * As {@link #idle(long, long, Duration)} in CPU time only (null where it is unknown): for the
+     * grader's student process, whose wall time is bounded by the grader in the student's own
+     * time (its waits for a CPU left out, {@code raylab.boundary.StudentProcess}).
+     */
+    public static Duration cpuIdle(long cpuNanos, Duration bound) {
+        return cpuNanos >= 0 && cpuNanos >= bound.toNanos() ? Duration.ofNanos(cpuNanos) : null;
+    }
+
     /** The CPU time of this process so far (ns), or −1 where the system does not say. */
     public static long cpuNanos() {
         return ProcessHandle.current().info().totalCpuDuration().map(Duration::toNanos).orElse(-1L);
@@ -134,7 +143,7 @@ public final class Watchdog implements AutoCloseable {
 
     /**
      * The sentence for the first thread of {@code stacks} that is inside a student file, or empty:
-     * "your code has run for 5 s in Sphere.intersect (Sphere.java:41) without returning: an
+     * "your code has run for 2 s in Sphere.intersect (Sphere.java:41) without returning: an
      * endless loop? [called from ...]".
      */
     public static Optional<String> stuck(Map<Thread, StackTraceElement[]> stacks, Collection<String> studentFiles,

@@ -305,19 +305,21 @@ public final class StudentServer {
 
     /**
      * The student process's watchdog: when a frame is being served and no call of the student's
-     * has returned for {@code boundNanos} (the time spent waiting for the grader's answers not
-     * counted) while the serving thread is in the student's classes, it answers the frame the
-     * grader waits for with a THROW of {@link #STUCK} whose message says where ("your code has run
-     * for 5 s in Lambertian.diffuse (Lambertian.java:41) without returning: an endless loop?", the
-     * student's frames of the thread's stack), then ends this process: a loop cannot be stopped
-     * from outside, and the grader starts a new process for its next call.
+     * has returned while this process used {@code boundNanos} of CPU time (never counting the time
+     * spent waiting for the grader's answers; code that waits instead of running meets the
+     * grader's wall limit, in the student's own time) and the serving thread is in the student's
+     * classes, it answers the frame the grader waits
+     * for with a THROW of {@link #STUCK} whose message says where ("your code has run for 2 s in
+     * Lambertian.diffuse (Lambertian.java:41) without returning: an endless loop?", the student's
+     * frames of the thread's stack, as {@code raylab.course.Watchdog} says it), then ends this
+     * process: a loop cannot be stopped from outside, and the grader starts a new process for its
+     * next call.
      */
     private void watch(long boundNanos) {
         java.util.Collection<String> files = studentClasses.stream()
                 .map(c -> "src/main/java/" + c.replace('.', '/') + ".java").toList();
         java.time.Duration bound = java.time.Duration.ofNanos(boundNanos);
         long seen = -1;
-        long wall0 = 0;
         long cpu0 = 0;
         while (true) {
             try {
@@ -326,16 +328,14 @@ public final class StudentServer {
                 return;
             }
             long u = progress;
-            long wall = System.nanoTime();
             long cpu = raylab.course.Watchdog.cpuNanos();
             Thread t = serving;
             if (u != seen || !busy || waiting || t == null) {
-                seen = waiting || !busy ? -1 : u; // the grader's time, or none served: the clocks start again
-                wall0 = wall;
+                seen = waiting || !busy ? -1 : u; // the grader's time, or none served: the clock starts again
                 cpu0 = cpu;
                 continue;
             }
-            java.time.Duration idle = raylab.course.Watchdog.idle(wall - wall0, cpu < 0 ? -1 : cpu - cpu0, bound);
+            java.time.Duration idle = raylab.course.Watchdog.cpuIdle(cpu < 0 ? -1 : cpu - cpu0, bound);
             if (idle == null) {
                 continue;
             }

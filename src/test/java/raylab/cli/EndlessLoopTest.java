@@ -39,9 +39,10 @@ import raylab.course.Watchdog;
  * renders), after the watchdog's bound ({@link Watchdog#FLOOR} of CPU time: the reference finishes
  * a tile, a pixel, a call or a visible test in far less) instead of the old 300 s of a render or
  * 10 s of each test. Each command runs in a JVM of its own with the looping file compiled first on
- * the class path (the grader: in the submission, one grading for the first method of each milestone
- * and one for the others); the runs go three at a time, each {@code check} after the one before
- * (they share target/check) and each grading after the one before (they share the grader's cache).
+ * the class path (the grader: in the submission); {@code check} and the grader run once for the
+ * first method of each milestone together and once for the others. The runs go three at a time,
+ * each {@code check} after the one before (they share target/check) and each grading after the
+ * one before (they share the grader's cache).
  */
 class EndlessLoopTest {
     static final Path ROOT = Path.of("").toAbsolutePath();
@@ -91,6 +92,11 @@ class EndlessLoopTest {
 
     /** raylab ARGS in a JVM whose class path starts with {@code first} (null: none). */
     static Ran run(Path first, String... args) throws Exception {
+        return run(first, 300, args);
+    }
+
+    /** As {@link #run(Path, String...)}, stopped after {@code guardSeconds} (a guard only). */
+    static Ran run(Path first, int guardSeconds, String... args) throws Exception {
         Path out = Files.createTempFile(dir, "out", ".txt");
         Path err = Files.createTempFile(dir, "err", ".txt");
         List<String> cmd = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
@@ -100,11 +106,40 @@ class EndlessLoopTest {
         Process p = new ProcessBuilder(cmd).directory(ROOT.toFile()).redirectOutput(out.toFile())
                 .redirectError(err.toFile()).start();
         // A guard only (the old limit): the assertions are on what raylab says.
-        if (!p.waitFor(300, TimeUnit.SECONDS)) {
+        if (!p.waitFor(guardSeconds, TimeUnit.SECONDS)) {
             p.descendants().forEach(ProcessHandle::destroyForcibly);
             p.destroyForcibly();
         }
         return new Ran(p.waitFor(), Files.readString(out), Files.readString(err));
+    }
+
+    /**
+     * {@code render --watch} (which runs {@code render} in a JVM of its own at each save), until it
+     * waits for the next save: what it printed. Its home is an empty folder, so that it builds
+     * nothing and watches no file of this project.
+     */
+    static String renderWatch(String method) throws Exception {
+        Path out = Files.createTempFile(dir, "watch", ".txt");
+        Path home = Files.createDirectories(dir.resolve("watch-home-" + method));
+        String scene = OWNER.get(method).scenes().get(0).scene();
+        List<String> cmd = List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
+                "-XX:TieredStopAtLevel=1", "-Draylab.home=" + home, "-cp", dir.resolve(method) + File.pathSeparator
+                        + System.getProperty("java.class.path"), "raylab.cli.Main", "render", scene, "--watch", "-o",
+                dir.resolve(method + "-watch.png").toString(), "--quiet", "--threads", "1");
+        Process p = new ProcessBuilder(cmd).directory(ROOT.toFile()).redirectErrorStream(true)
+                .redirectOutput(out.toFile()).start();
+        try {
+            // A guard only (the old limit): the assertion is on what it says.
+            for (long end = System.nanoTime() + 300_000_000_000L; System.nanoTime() < end && p.isAlive()
+                    && !Files.readString(out).contains("waiting for the next save");) {
+                Thread.sleep(200);
+            }
+        } finally {
+            p.descendants().forEach(ProcessHandle::destroyForcibly);
+            p.destroyForcibly();
+            p.waitFor();
+        }
+        return Files.readString(out);
     }
 
     /** The sentence naming {@code method} in its own file, after at least the bound. */
@@ -147,13 +182,24 @@ class EndlessLoopTest {
             }
         }
         Path results = dir.resolve("results-" + name);
-        Ran r = run(null, "grade", sub.toString(), "--out", results.toString(), "--root", ROOT.toString(), "--quiet",
+        // The first grading may build the grader's cache (the tests run on the reference): a longer guard.
+        Ran r = run(null, 900, "grade", sub.toString(), "--out", results.toString(), "--root", ROOT.toString(), "--quiet",
                 "--sandbox-user", "", "--seed", "7");
         Path json = results.resolve("results.json");
         return new Ran(r.status(), Files.isRegularFile(json) ? Files.readString(json) : "", r.err());
     }
 
-    /** The methods graded together: one per milestone (the first of each), then the others. */
+    static void copyTree(Path from, Path to) throws IOException {
+        try (Stream<Path> files = Files.walk(from)) {
+            for (Path f : (Iterable<Path>) files.filter(Files::isRegularFile)::iterator) {
+                Path t = to.resolve(from.relativize(f).toString());
+                Files.createDirectories(t.getParent());
+                Files.copy(f, t, java.nio.file.StandardCopyOption.REPLACE_EXISTING);
+            }
+        }
+    }
+
+    /** The methods graded (and checked) together: one per milestone (the first of each), then the others. */
     static List<List<String>> gradings() {
         List<List<String>> out = new ArrayList<>();
         for (String method : FILE.keySet()) {
@@ -171,11 +217,24 @@ class EndlessLoopTest {
     @TestFactory
     Stream<DynamicTest> aLoopInEachMethodIsStoppedAndNamedByEachCommand() throws Exception {
         Map<String, Future<Ran>> runs = new LinkedHashMap<>();
-        // check runs one after the other in one task: they share target/check, and its build.
+        // check as the grader: one run for the first method of each milestone, one for the others
+        // (with their looping classes together first on the class path), one after the other in
+        // one task: they share target/check and its build.
         Map<String, Ran> checks = new java.util.concurrent.ConcurrentHashMap<>();
         Future<?> checking = pool.submit(() -> {
-            for (String method : FILE.keySet()) {
-                checks.put(method, run(dir.resolve(method), "check", OWNER.get(method).id(), "--threads", "1"));
+            int n = 0;
+            for (List<String> methods : gradings()) {
+                Path classes = dir.resolve("check-" + ++n);
+                for (String m : methods) {
+                    copyTree(dir.resolve(m), classes);
+                }
+                List<String> args = new ArrayList<>(List.of("check"));
+                if (methods.size() == 1) {
+                    args.add(OWNER.get(methods.get(0)).id());
+                }
+                args.addAll(List.of("--threads", "1"));
+                Ran r = run(classes, args.toArray(String[]::new));
+                methods.forEach(m -> checks.put(m, r));
             }
             return null;
         });
@@ -189,11 +248,18 @@ class EndlessLoopTest {
             }
             return null;
         });
+        String watched = FILE.keySet().iterator().next();
+        Future<String> watching = pool.submit(() -> renderWatch(watched));
         for (String method : FILE.keySet()) {
             runs.put("render " + method, pool.submit((Callable<Ran>) () -> render(method)));
             runs.put("trace " + method, pool.submit((Callable<Ran>) () -> trace(method)));
         }
         List<DynamicTest> tests = new ArrayList<>();
+        tests.add(DynamicTest.dynamicTest("render --watch names " + watched + " and waits for the next save", () -> {
+            String said = watching.get();
+            assertNamed(watched, said);
+            assertTrue(said.contains("waiting for the next save"), said);
+        }));
         for (String method : FILE.keySet()) {
             String scene = OWNER.get(method).scenes().get(0).scene();
             tests.add(DynamicTest.dynamicTest("render stops and names " + method, () -> {
