@@ -128,12 +128,17 @@ public final class Watchdog implements AutoCloseable {
     }
 
     /**
-     * As {@link #idle(long, long, Duration)} in CPU time only (null where it is unknown): for the
-     * grader's student process, whose wall time is bounded by the grader in the student's own
-     * time (its waits for a CPU left out, {@code raylab.boundary.StudentProcess}).
+     * As {@link #idle(long, long, Duration)} in CPU time only, for the grader's student process,
+     * whose wall time is bounded by the grader in the student's own time (its waits for a CPU left
+     * out, {@code raylab.boundary.StudentProcess}); where this process cannot read its CPU time
+     * (the grader's sandbox mounts no /proc) in wall time at {@link #WALL_TIMES} times the bound.
      */
-    public static Duration cpuIdle(long cpuNanos, Duration bound) {
-        return cpuNanos >= 0 && cpuNanos >= bound.toNanos() ? Duration.ofNanos(cpuNanos) : null;
+    public static Duration cpuIdle(long wallNanos, long cpuNanos, Duration bound) {
+        if (cpuNanos >= 0) {
+            return cpuNanos >= bound.toNanos() ? Duration.ofNanos(cpuNanos) : null;
+        }
+        // No CPU clock (the grader's sandbox has no /proc): only the wall time at WALL_TIMES x the bound.
+        return wallNanos >= WALL_TIMES * bound.toNanos() ? Duration.ofNanos(wallNanos) : null;
     }
 
     /** The CPU time of this process so far (ns), or −1 where the system does not say. */

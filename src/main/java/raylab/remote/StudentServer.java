@@ -305,10 +305,10 @@ public final class StudentServer {
 
     /**
      * The student process's watchdog: when a frame is being served and no call of the student's
-     * has returned while this process used {@code boundNanos} of CPU time (never counting the time
-     * spent waiting for the grader's answers; code that waits instead of running meets the
-     * grader's wall limit, in the student's own time) and the serving thread is in the student's
-     * classes, it answers the frame the grader waits
+     * has returned while this process used {@code boundNanos} of CPU time (in the grader's sandbox,
+     * which has no /proc to read it from: 6 times that of wall time; never counting the time spent
+     * waiting for the grader's answers; code that waits instead of running meets the grader's wall
+     * limit, in the student's own time) and the serving thread is in the student's classes, it answers the frame the grader waits
      * for with a THROW of {@link #STUCK} whose message says where ("your code has run for 2 s in
      * Lambertian.diffuse (Lambertian.java:41) without returning: an endless loop?", the student's
      * frames of the thread's stack, as {@code raylab.course.Watchdog} says it), then ends this
@@ -321,6 +321,7 @@ public final class StudentServer {
         java.time.Duration bound = java.time.Duration.ofNanos(boundNanos);
         long seen = -1;
         long cpu0 = 0;
+        long wall0 = 0;
         while (true) {
             try {
                 Thread.sleep(100);
@@ -329,13 +330,15 @@ public final class StudentServer {
             }
             long u = progress;
             long cpu = raylab.course.Watchdog.cpuNanos();
+            long wall = System.nanoTime();
             Thread t = serving;
             if (u != seen || !busy || waiting || t == null) {
-                seen = waiting || !busy ? -1 : u; // the grader's time, or none served: the clock starts again
+                seen = waiting || !busy ? -1 : u; // the grader's time, or none served: the clocks start again
                 cpu0 = cpu;
+                wall0 = wall;
                 continue;
             }
-            java.time.Duration idle = raylab.course.Watchdog.cpuIdle(cpu < 0 ? -1 : cpu - cpu0, bound);
+            java.time.Duration idle = raylab.course.Watchdog.cpuIdle(wall - wall0, cpu < 0 ? -1 : cpu - cpu0, bound);
             if (idle == null) {
                 continue;
             }

@@ -39,8 +39,8 @@ import raylab.course.Watchdog;
  * renders), after the watchdog's bound ({@link Watchdog#FLOOR} of CPU time: the reference finishes
  * a tile, a pixel, a call or a visible test in far less) instead of the old 300 s of a render or
  * 10 s of each test. Each command runs in a JVM of its own with the looping file compiled first on
- * the class path (the grader: in the submission); {@code check} and the grader run once for the
- * first method of each milestone together and once for the others. The runs go three at a time,
+ * the class path (the grader: in the submission, one grading for the first method of each
+ * milestone together and one for the others). The runs go three at a time,
  * each {@code check} after the one before (they share target/check) and each grading after the
  * one before (they share the grader's cache).
  */
@@ -189,17 +189,7 @@ class EndlessLoopTest {
         return new Ran(r.status(), Files.isRegularFile(json) ? Files.readString(json) : "", r.err());
     }
 
-    static void copyTree(Path from, Path to) throws IOException {
-        try (Stream<Path> files = Files.walk(from)) {
-            for (Path f : (Iterable<Path>) files.filter(Files::isRegularFile)::iterator) {
-                Path t = to.resolve(from.relativize(f).toString());
-                Files.createDirectories(t.getParent());
-                Files.copy(f, t, java.nio.file.StandardCopyOption.REPLACE_EXISTING);
-            }
-        }
-    }
-
-    /** The methods graded (and checked) together: one per milestone (the first of each), then the others. */
+    /** The methods graded together: one per milestone (the first of each), then the others. */
     static List<List<String>> gradings() {
         List<List<String>> out = new ArrayList<>();
         for (String method : FILE.keySet()) {
@@ -217,24 +207,12 @@ class EndlessLoopTest {
     @TestFactory
     Stream<DynamicTest> aLoopInEachMethodIsStoppedAndNamedByEachCommand() throws Exception {
         Map<String, Future<Ran>> runs = new LinkedHashMap<>();
-        // check as the grader: one run for the first method of each milestone, one for the others
-        // (with their looping classes together first on the class path), one after the other in
-        // one task: they share target/check and its build.
+        // check for each method's milestone, one after the other in one task: they share
+        // target/check and its build (and each run has the whole-run wall clock of its own).
         Map<String, Ran> checks = new java.util.concurrent.ConcurrentHashMap<>();
         Future<?> checking = pool.submit(() -> {
-            int n = 0;
-            for (List<String> methods : gradings()) {
-                Path classes = dir.resolve("check-" + ++n);
-                for (String m : methods) {
-                    copyTree(dir.resolve(m), classes);
-                }
-                List<String> args = new ArrayList<>(List.of("check"));
-                if (methods.size() == 1) {
-                    args.add(OWNER.get(methods.get(0)).id());
-                }
-                args.addAll(List.of("--threads", "1"));
-                Ran r = run(classes, args.toArray(String[]::new));
-                methods.forEach(m -> checks.put(m, r));
+            for (String method : FILE.keySet()) {
+                checks.put(method, run(dir.resolve(method), "check", OWNER.get(method).id(), "--threads", "1"));
             }
             return null;
         });
