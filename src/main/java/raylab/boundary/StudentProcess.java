@@ -895,6 +895,11 @@ public final class StudentProcess implements AutoCloseable {
             pendingFailure = null;
             return p;
         }
+        if (StudentServer.STUCK.equals(cls) && withOutput) {
+            // The student process's watchdog named where its code is stuck, and ended the process.
+            dead();
+            return new StudentTimeout(msg == null ? "your code did not return (an endless loop?)" : msg);
+        }
         if ("raylab.course.NotImplemented".equals(cls)) {
             // The untouched stub: the framework's own exception, so messages say "TODO".
             return NotImplementedAgain.of(msg);

@@ -30,7 +30,11 @@ public final class Main implements Runnable {
         new CommandLine(this).usage(System.out);
     }
 
+    /** Whether this JVM runs one command line ({@link #main}): only then may a command end it at once. */
+    static volatile boolean standalone;
+
     public static void main(String[] args) {
+        standalone = true;
         System.exit(run(args));
     }
 

@@ -140,21 +140,16 @@ public final class RenderCommand implements Callable<Integer> {
             out.flush();
         }
         Image image;
-        // Stuck student code is named and stopped when no tile finishes within the bound.
+        // Stuck student code is named, and the command ends, when no tile finishes within the bound.
+        String context = " while rendering " + Display.path(scenePath);
         try (Progress progress = Progress.start(scene, Renderer.TILE);
-                Watchdog watchdog = Watchdog.start(Watchdog.FLOOR,
-                        StudentFault.studentFiles(Path.of("").toAbsolutePath()), stuck -> { }, true)) {
-            try {
-                image = renderer.render(threads, tile -> {
-                    watchdog.progress();
-                    progress.tileDone(tile);
-                });
-            } catch (ThreadDeath | RuntimeException e) {
-                if (watchdog.message() == null) {
-                    throw e;
-                }
-                throw new UserError(watchdog.message() + " while rendering " + Display.path(scenePath), Main.FAILED);
-            }
+                Watchdog watchdog = Watchdog.start(Watchdog.bound(0),
+                        StudentFault.studentFiles(Path.of("").toAbsolutePath()),
+                        stuck -> StudentFault.stuck(spec.commandLine().getErr(), stuck + context))) {
+            image = renderer.render(threads, tile -> {
+                watchdog.progress();
+                progress.tileDone(tile);
+            });
         } catch (RuntimeException | StackOverflowError e) {
             if (e instanceof UserError) {
                 throw e;

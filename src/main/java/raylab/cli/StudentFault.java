@@ -25,6 +25,21 @@ public final class StudentFault {
     private StudentFault() {
     }
 
+    /**
+     * Stuck student code ({@link raylab.course.Watchdog}): says {@code sentence} ("your code has
+     * run for 2 s in ... an endless loop? while rendering ...") as a one-line error and, run from
+     * the command line, ends the JVM with exit status 1 ({@code Main.FAILED}): the stuck thread
+     * cannot be stopped otherwise. Run in-process (a test calling {@link Main#run}), the JVM is not
+     * ended: the line is said and the command goes on waiting.
+     */
+    static void stuck(java.io.PrintWriter err, String sentence) {
+        if (Main.standalone) {
+            raylab.course.Watchdog.endJvm(err, "raylab: " + sentence, Main.FAILED);
+        }
+        err.println("raylab: " + sentence);
+        err.flush();
+    }
+
     /** The student files of the project at {@code root}, '/'-separated relative paths. */
     public static List<String> studentFiles(Path root) {
         return raylab.course.Watchdog.studentFiles(root);

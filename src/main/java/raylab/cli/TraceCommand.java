@@ -58,19 +58,15 @@ public final class TraceCommand implements Callable<Integer> {
                     + scene.height + " image of " + scenePath);
         }
         try {
-            // The trace of one pixel has no unit of work smaller than itself: stuck code is named after the bound.
-            try (Watchdog watchdog = Watchdog.start(Watchdog.FLOOR,
-                    StudentFault.studentFiles(Path.of("").toAbsolutePath()), stuck -> { }, true)) {
-                try {
-                    return trace(out, scene, x, y);
-                } catch (ThreadDeath | RuntimeException e) {
-                    if (watchdog.message() == null) {
-                        throw e;
-                    }
-                    out.flush();
-                    throw new UserError(watchdog.message() + " while tracing pixel (" + x + ", " + y + ") of "
-                            + raylab.scene.Display.path(scenePath), Main.FAILED);
-                }
+            // The trace of one pixel has no unit of work smaller than itself: stuck code is named
+            // after the bound, and the command ends.
+            String context = " while tracing pixel (" + x + ", " + y + ") of " + raylab.scene.Display.path(scenePath);
+            try (Watchdog watchdog = Watchdog.start(Watchdog.bound(0),
+                    StudentFault.studentFiles(Path.of("").toAbsolutePath()), stuck -> {
+                        out.flush();
+                        StudentFault.stuck(spec.commandLine().getErr(), stuck + context);
+                    })) {
+                return trace(out, scene, x, y);
             }
         } catch (RuntimeException | StackOverflowError e) {
             if (e instanceof UserError) {

@@ -172,6 +172,11 @@ public final class MilestoneCheck {
                 }
             }
             for (TestResult t : failing) {
+                if (t.message() != null && t.message().contains(STUCK)) { // the loop first: it hides the rest
+                    return "fix " + nameOf(t) + ": " + oneLine(t.message(), 90);
+                }
+            }
+            for (TestResult t : failing) {
                 return "fix " + nameOf(t) + ": " + oneLine(t.message(), 90);
             }
             for (SceneOutcome s : scenes) {
@@ -316,9 +321,23 @@ public final class MilestoneCheck {
         Map<Assignment.GradedScene, java.util.concurrent.Future<SceneOutcome>> rendered = new LinkedHashMap<>();
         for (Assignment a : selected) {
             List<String> files = a.files().stream().map(Assignment.StudentFile::path).toList();
+            // After a scene stuck in the student's code, the milestone's scenes not started yet are
+            // not rendered (they would most likely be stuck in the same loop, each for the bound).
+            java.util.concurrent.atomic.AtomicReference<String> stuck = new java.util.concurrent.atomic.AtomicReference<>();
             for (Assignment.GradedScene g : renderScenes ? a.scenes() : List.<Assignment.GradedScene>of()) {
                 progress.accept("rendering " + g.scene() + " ...");
-                rendered.put(g, renders.submit(() -> render(root, g, own, threads, files)));
+                rendered.put(g, renders.submit(() -> {
+                    String before = stuck.get();
+                    if (before != null) {
+                        return new SceneOutcome(g, SceneStatus.ERROR, "not rendered: " + before
+                                + ": fix that, then check again");
+                    }
+                    SceneOutcome o = render(root, g, own, threads, files);
+                    if (o.status() == SceneStatus.ERROR && o.message().contains(STUCK)) {
+                        stuck.compareAndSet(null, g.scene() + " was stuck (" + o.message() + ")");
+                    }
+                    return o;
+                }));
             }
         }
         renders.shutdown();
@@ -335,7 +354,9 @@ public final class MilestoneCheck {
             List<Path> compiled = new ArrayList<>(testDirs);
             compiled.add(helpers);
             List<TestResult> expected = BuildCache.discover(cp, classes, runDir, compiled, work.resolve("discovered.json"));
-            TestLauncher.Run o = TestLauncher.run(cp, null, List.of(), classes, TestLauncher.Limits.DEFAULT,
+            List<String> run = new ArrayList<>(classes);
+            run.add(TestLauncher.watchdog()); // stuck code is named, and the other test classes go on
+            TestLauncher.Run o = TestLauncher.run(cp, null, List.of(), run, TestLauncher.Limits.DEFAULT,
                     runDir, expected);
             for (TestResult t : o.results()) {
                 String c = t.className();
@@ -358,6 +379,9 @@ public final class MilestoneCheck {
         }
         return out;
     }
+
+    /** What the watchdog's sentence ends with (raylab.course.Watchdog). */
+    static final String STUCK = "without returning: an endless loop?";
 
     /** The outcome of a render started in the background. */
     private static SceneOutcome finished(Assignment.GradedScene g, java.util.concurrent.Future<SceneOutcome> f)

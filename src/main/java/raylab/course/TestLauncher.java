@@ -7,6 +7,7 @@ import java.io.InputStream;
 import java.io.InputStreamReader;
 import java.io.OutputStream;
 import java.nio.charset.StandardCharsets;
+import java.nio.file.Files;
 import java.nio.file.Path;
 import java.security.MessageDigest;
 import java.security.SecureRandom;
@@ -87,6 +88,19 @@ public final class TestLauncher {
      */
     public static String thenBoundary(Path config) {
         return THEN_BOUNDARY + config;
+    }
+
+    private static final String WATCHDOG = "--watchdog";
+
+    /**
+     * An entry of {@code classes} for {@link #run}: a test stuck in student code is named and its
+     * JVM ended ({@link Watchdog}); the tests not reported yet run in a new JVM, except the rest of
+     * the stuck test's class (its other tests would most likely be stuck in the same loop: they
+     * are reported as not run, with the stuck one named). For {@code check}; never for a run of
+     * the reference, whose tests are what the bound is measured against.
+     */
+    public static String watchdog() {
+        return WATCHDOG;
     }
 
     private static final String THEN_RENDER = "--then-render=";
@@ -190,6 +204,8 @@ public final class TestLauncher {
             if (c.startsWith(THEN_RENDER)) {
                 cmd.add("--then-render");
                 cmd.addAll(List.of(c.substring(THEN_RENDER.length()).split("\0", 3)));
+            } else if (c.equals(WATCHDOG)) {
+                cmd.add(WATCHDOG);
             } else if (c.startsWith(THEN_BOUNDARY)) {
                 cmd.add("--then-boundary");
                 cmd.add(c.substring(THEN_BOUNDARY.length()));
@@ -201,47 +217,84 @@ public final class TestLauncher {
         if (list) {
             cmd.add("--list");
         }
-        byte[] key = new byte[32];
-        new SecureRandom().nextBytes(key);
-
-        ProcessBuilder pb = new ProcessBuilder(cmd).directory(workDir.toFile())
-                .redirectError(System.getenv("RAYLAB_DEBUG_CHILD") == null ? ProcessBuilder.Redirect.DISCARD
-                        : ProcessBuilder.Redirect.appendTo(new File(System.getenv("RAYLAB_DEBUG_CHILD"))));
-        pb.environment().keySet().removeIf(k -> k.startsWith("JAVA_TOOL") || k.startsWith("_JAVA_OPTIONS")
-                || k.equals("JDK_JAVA_OPTIONS"));
-        Process p = pb.start();
-        try (OutputStream stdin = p.getOutputStream()) {
-            stdin.write((HexFormat.of().formatHex(key) + "\n").getBytes(StandardCharsets.UTF_8));
-        } catch (IOException ignored) {
-            // the child died at once; reported below
-        }
         Map<String, TestResult> results = new LinkedHashMap<>();
         List<String> containerFailures = new ArrayList<>();
         String[] current = {null};
         boolean[] ended = {false};
-        Thread reader = new Thread(() -> readProtocol(p.getInputStream(), key, results, current, ended,
-                containerFailures), "raylab-test-reader");
-        reader.setDaemon(true);
-        reader.start();
-
+        String[] stuck = {null};
+        long deadline = System.nanoTime() + limits.wallClock().toNanos();
+        Process p;
         boolean exited;
-        try {
-            exited = p.waitFor(limits.wallClock().toMillis(), TimeUnit.MILLISECONDS);
-        } catch (InterruptedException e) {
-            Thread.currentThread().interrupt();
-            exited = false;
-        }
         String problem = "";
-        if (!exited) {
-            kill(p);
-            problem = "stopped after " + limits.wallClock().toSeconds() + " s (time limit for the whole run)";
+        Path skipFile = null;
+        int runs = 0;
+        List<String> stuckIds = new ArrayList<>();
+        while (true) {
+            // A test stuck in student code ended its JVM after its report ("STUCK", TestMain):
+            // the tests not reported yet run in a new JVM, for as long as the run's wall clock lasts.
+            List<String> command = new ArrayList<>(cmd);
+            if (skipFile != null) {
+                command.add("--skip");
+                command.add(skipFile.toString());
+            }
+            byte[] key = new byte[32];
+            new SecureRandom().nextBytes(key);
+
+            ProcessBuilder pb = new ProcessBuilder(command).directory(workDir.toFile())
+                    .redirectError(System.getenv("RAYLAB_DEBUG_CHILD") == null ? ProcessBuilder.Redirect.DISCARD
+                            : ProcessBuilder.Redirect.appendTo(new File(System.getenv("RAYLAB_DEBUG_CHILD"))));
+            pb.environment().keySet().removeIf(k -> k.startsWith("JAVA_TOOL") || k.startsWith("_JAVA_OPTIONS")
+                    || k.equals("JDK_JAVA_OPTIONS"));
+            Process child = pb.start();
+            p = child;
+            runs++;
+            try (OutputStream stdin = child.getOutputStream()) {
+                stdin.write((HexFormat.of().formatHex(key) + "\n").getBytes(StandardCharsets.UTF_8));
+            } catch (IOException ignored) {
+                // the child died at once; reported below
+            }
+            stuck[0] = null;
+            Thread reader = new Thread(() -> readProtocol(child.getInputStream(), key, results, current, ended,
+                    containerFailures, stuck), "raylab-test-reader");
+            reader.setDaemon(true);
+            reader.start();
+
+            try {
+                exited = child.waitFor(Math.max(0, deadline - System.nanoTime()), TimeUnit.NANOSECONDS);
+            } catch (InterruptedException e) {
+                Thread.currentThread().interrupt();
+                exited = false;
+            }
+            if (!exited) {
+                kill(child);
+                problem = "stopped after " + limits.wallClock().toSeconds() + " s (time limit for the whole run)";
+            }
+            try {
+                reader.join(5000);
+            } catch (InterruptedException e) {
+                Thread.currentThread().interrupt();
+            }
+            kill(child);
+            synchronized (results) {
+                if (stuck[0] != null) {
+                    stuckIds.add(stuck[0]);
+                }
+                if (!exited || ended[0] || stuck[0] == null || !results.containsKey(stuck[0]) || list
+                        || runs > expected.size() + 1) {
+                    break;
+                }
+                current[0] = null;
+                if (skipFile == null) {
+                    skipFile = Files.createTempFile(workDir, "reported", ".txt");
+                }
+                List<String> skip = reportedIds(results.keySet());
+                stuckIds.forEach(id -> skip.add(classOf(id)));
+                Files.write(skipFile, skip, StandardCharsets.UTF_8);
+            }
         }
-        try {
-            reader.join(5000);
-        } catch (InterruptedException e) {
-            Thread.currentThread().interrupt();
+        if (skipFile != null) {
+            Files.deleteIfExists(skipFile);
         }
-        kill(p);
         synchronized (results) {
             if (exited && !ended[0]) {
                 problem = "the test JVM ended early (exit status " + p.exitValue()
@@ -265,6 +318,12 @@ public final class TestLauncher {
                         s = exited ? TestResult.Status.CRASHED : TestResult.Status.TIMED_OUT;
                         why = "this test was running when " + (problem.isEmpty() ? "the run stopped" : problem);
                         cutOff = e.id();
+                    } else if (stuckCase(stuckIds, e.id()) != null) {
+                        s = TestResult.Status.MISSING;
+                        why = "not run: case " + stuckCase(stuckIds, e.id()) + " of this test was stuck, see it";
+                    } else if (stuckIds.stream().anyMatch(st -> e.id().startsWith(classOf(st) + "/"))) {
+                        s = TestResult.Status.MISSING;
+                        why = "not run: a test of this class was stuck in your code (see it): fix that, then check again";
                     } else {
                         s = TestResult.Status.MISSING;
                         why = "no result was reported for this test"
@@ -308,8 +367,44 @@ public final class TestLauncher {
         return body.substring(k + 1);
     }
 
+    /** The id of the test class of test {@code id} ("[engine:junit-jupiter]/[class:raylab.SphereTest]"). */
+    static String classOf(String id) {
+        int k = id.indexOf("/[class:");
+        int end = k < 0 ? -1 : id.indexOf(']', k);
+        return end < 0 ? id : id.substring(0, end + 1);
+    }
+
+    /** Which case ("#3") of the parameterized or dynamic test of {@code id} was stuck, or null. */
+    private static String stuckCase(List<String> stuckIds, String id) {
+        for (String st : stuckIds) {
+            List<String> ids = reportedIds(List.of(st));
+            if (ids.size() > 1 && id.startsWith(ids.get(1) + "/")) {
+                String seg = st.substring(ids.get(1).length() + 2, st.length() - 1);
+                return seg.substring(seg.indexOf(':') + 1);
+            }
+        }
+        return null;
+    }
+
+    /**
+     * The ids a new JVM leaves out after a stuck test ({@code TestMain --skip}): each reported
+     * test, and the parameterized or dynamic test of a reported invocation (its other invocations
+     * are then not run: they report as missing, after the one that was stuck).
+     */
+    static List<String> reportedIds(java.util.Collection<String> reported) {
+        java.util.Set<String> out = new java.util.LinkedHashSet<>();
+        for (String id : reported) {
+            out.add(id);
+            int k = id.lastIndexOf("/[");
+            if (k > 0 && (id.startsWith("[test-template-invocation:", k + 1) || id.startsWith("[dynamic-test:", k + 1))) {
+                out.add(id.substring(0, k));
+            }
+        }
+        return new ArrayList<>(out);
+    }
+
     private static void readProtocol(InputStream in, byte[] key, Map<String, TestResult> results,
-            String[] current, boolean[] ended, List<String> containerFailures) {
+            String[] current, boolean[] ended, List<String> containerFailures, String[] stuck) {
         Mac mac;
         try {
             mac = Mac.getInstance("HmacSHA256");
@@ -347,6 +442,8 @@ public final class TestLauncher {
                         int c = id.indexOf("[class:");
                         String cls = c < 0 ? id : id.substring(c + 7, Math.max(c + 7, id.indexOf(']', c)));
                         containerFailures.add(cls + " failed before its tests ran: " + (k < 0 ? "" : s.substring(k + 1)));
+                    } else if (rest.startsWith("STUCK ")) {
+                        stuck[0] = rest.substring(6);
                     } else if (rest.equals("END")) {
                         ended[0] = true;
                     }

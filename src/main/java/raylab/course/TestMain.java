@@ -43,7 +43,9 @@ import com.fasterxml.jackson.databind.ObjectMapper;
  * tests print goes to a capped buffer attached to their result.
  * Arguments: {@code --test-classes DIR} (scanned for tests), {@code --tag T} (repeatable),
  * {@code --class NAME} (repeatable), {@code --timeout S} (per test), {@code --output-cap BYTES},
- * {@code --list} (report the discovered tests without running them), {@code --then-boundary FILE}
+ * {@code --list} (report the discovered tests without running them), {@code --watchdog} (name and
+ * end a test stuck in student code, {@link Watchdog}), {@code --skip FILE} (leave out the tests
+ * whose unique ids, or whose parents' ids, are lines of FILE), {@code --then-boundary FILE}
  * (in the grader's process: the classes named after it run after the ones before it, each group
  * to its end, with a new student process described by FILE; see {@link BoundaryHooks}),
  * {@code --then-render FILE ARGS SECONDS} (in the grader's process, after every test has been
@@ -84,6 +86,8 @@ public final class TestMain {
         int cap = 16 * 1024;
         boolean list = false;
         String[] render = null;
+        Set<String> skip = Set.of();
+        boolean watch = false;
         for (int i = 0; i < args.length; i++) {
             switch (args[i]) {
                 case "--test-classes" -> testClasses = Path.of(args[++i]);
@@ -97,6 +101,9 @@ public final class TestMain {
                 case "--timeout" -> timeout = Integer.parseInt(args[++i]);
                 case "--output-cap" -> cap = Integer.parseInt(args[++i]);
                 case "--list" -> list = true;
+                case "--watchdog" -> watch = true;
+                case "--skip" -> skip = Set.copyOf(java.nio.file.Files.readAllLines(Path.of(args[++i]),
+                        StandardCharsets.UTF_8));
                 default -> throw new IllegalArgumentException("unknown argument " + args[i]);
             }
         }
@@ -117,7 +124,7 @@ public final class TestMain {
         Launcher launcher = LauncherFactory.create();
         ObjectMapper json = new ObjectMapper();
         if (list) {
-            LauncherDiscoveryRequest req = request(classes, testClasses, tags, timeout);
+            LauncherDiscoveryRequest req = request(classes, testClasses, tags, timeout, Set.of());
             TestPlan plan = launcher.discover(req);
             for (TestIdentifier root : plan.getRoots()) {
                 for (TestIdentifier t : plan.getDescendants(root)) {
@@ -135,18 +142,41 @@ public final class TestMain {
         // JUnit's clock, on wall time, is only a guard against a grader that hangs.
         StudentTime studentTime = System.getProperty("raylab.boundary") != null ? new StudentTime(timeout, boundary) : null;
         int junitTimeout = studentTime == null ? timeout : StudentTime.guardSeconds(timeout);
-        // A test whose code has not returned for the bound is stopped and named where it is stuck
-        // (its student frames), long before the per-test timeout.
-        // Behind the grader's process boundary the student's code runs in another JVM: here it is
-        // only named (a stand-in waits for it), and the per-test timeout ends it.
-        Watchdog watchdog = Watchdog.start(Watchdog.bound(0), Watchdog.studentFiles(Path.of("").toAbsolutePath()),
-                stuck -> { }, groupBoundary.stream().allMatch(java.util.Objects::isNull));
+        // With --watchdog (check: the student's code, never the reference's own run), a test whose
+        // code has not returned for the bound is named where it is stuck (its student frames),
+        // long before the per-test timeout: the test is reported with that sentence, and
+        // this JVM ends (a loop cannot be stopped from outside); the launcher runs the tests not
+        // reported yet in a new one ("STUCK", TestLauncher). Behind the grader's process boundary
+        // the student's code runs in another JVM, whose own watchdog names it (StudentServer).
+        TestIdentifier[] running = {null};
+        List<String> watchedFiles = Watchdog.studentFiles(Path.of("").toAbsolutePath());
+        java.util.concurrent.atomic.AtomicBoolean ending = new java.util.concurrent.atomic.AtomicBoolean();
+        Watchdog watchdog = studentTime != null || !watch ? null : Watchdog.start(Watchdog.bound(0),
+                watchedFiles, stuck -> {
+                    TestIdentifier t = running[0];
+                    if (t == null || !ending.compareAndSet(false, true)) {
+                        return; // between tests, or the test's end already says it
+                    }
+                    String id = t.getUniqueId();
+                    long t0 = started.getOrDefault(id, System.nanoTime());
+                    try {
+                        channel.send("RESULT " + json.writeValueAsString(toResult(t, TestResult.Status.TIMED_OUT,
+                                stuck, captured.text(), (System.nanoTime() - t0) / 1_000_000)));
+                    } catch (Exception e) {
+                        channel.send("ERROR " + e.getClass().getSimpleName());
+                    }
+                    channel.send("STUCK " + id);
+                    Runtime.getRuntime().halt(STUCK_EXIT);
+                });
         TestExecutionListener listener = new TestExecutionListener() {
             @Override
             public void executionStarted(TestIdentifier t) {
                 if (t.isTest()) {
                     captured.reset();
-                    watchdog.next(Watchdog.bound(0));
+                    if (watchdog != null) {
+                        watchdog.next(Watchdog.bound(0));
+                    }
+                    running[0] = t;
                     started.put(t.getUniqueId(), System.nanoTime());
                     if (studentTime != null) {
                         studentTime.start(t.getUniqueId());
@@ -179,11 +209,19 @@ public final class TestMain {
                     case ABORTED -> TestResult.Status.ABORTED;
                     case FAILED -> isTimeout(r) ? TestResult.Status.TIMED_OUT : TestResult.Status.FAILED;
                 };
-                String stuck = watchdog.message();
-                watchdog.next(Watchdog.bound(0));
-                if (stuck != null && s != TestResult.Status.PASSED) {
-                    send(t, TestResult.Status.TIMED_OUT, stuck, ms);
-                    return;
+                if (watchdog != null && s == TestResult.Status.TIMED_OUT) {
+                    // JUnit's wall clock came first (a loaded machine: the bound is in CPU time), and
+                    // the test's thread may still run: named and ended as the watchdog does.
+                    java.util.Optional<String> where = Watchdog.stuck(Thread.getAllStackTraces(),
+                            watchedFiles, java.time.Duration.ofMillis(ms));
+                    if (where.isPresent() && ending.compareAndSet(false, true)) {
+                        send(t, s, where.get(), ms);
+                        channel.send("STUCK " + t.getUniqueId());
+                        Runtime.getRuntime().halt(STUCK_EXIT);
+                    }
+                }
+                if (watchdog != null) {
+                    watchdog.next(Watchdog.bound(0));
                 }
                 if (s == TestResult.Status.TIMED_OUT && studentTime != null) {
                     // The guard fired: the student's code, if its own time reached the limit; else
@@ -211,7 +249,7 @@ public final class TestMain {
                 // The student process of the groups before ends here: nothing it saw reaches this group.
                 present(boundary).switchTo(Path.of(groupBoundary.get(g)));
             }
-            launcher.execute(request(groups.get(g), testClasses, tags, junitTimeout), listener);
+            launcher.execute(request(groups.get(g), testClasses, tags, junitTimeout, skip), listener);
         }
         channel.send("END");
         if (render != null) {
@@ -244,8 +282,26 @@ public final class TestMain {
                 "--then-boundary and --then-render need the grader's process boundary, which this build does not have"));
     }
 
+    /** Whether {@code id} is one of {@code skip} or below one of them. */
+    static boolean skipped(Set<String> skip, String id) {
+        for (int k = id.length(); k > 0; k = id.lastIndexOf("/[", k - 1)) {
+            if (skip.contains(id.substring(0, k))) {
+                return true;
+            }
+        }
+        return false;
+    }
+
+    /** The exit status of a JVM ended by a stuck test (after its report and "STUCK"). */
+    public static final int STUCK_EXIT = 86;
+
+    /**
+     * The tests to run: without the tests whose unique ids are in {@code skip} (already reported
+     * by an earlier JVM of the same run; a parameterized or dynamic test is left out whole when
+     * its id is there, as the launcher lists it).
+     */
     private static LauncherDiscoveryRequest request(List<String> classes, Path testClasses, List<String> tags,
-            int timeout) {
+            int timeout, Set<String> skip) {
         LauncherDiscoveryRequestBuilder request = LauncherDiscoveryRequestBuilder.request()
                 .configurationParameter("junit.jupiter.execution.timeout.default", timeout + " s")
                 .configurationParameter("junit.jupiter.execution.timeout.mode", "enabled")
@@ -260,6 +316,11 @@ public final class TestMain {
         }
         if (!tags.isEmpty()) {
             request.filters(TagFilter.includeTags(tags));
+        }
+        if (!skip.isEmpty()) {
+            request.filters((org.junit.platform.launcher.PostDiscoveryFilter) d -> skipped(skip, d.getUniqueId().toString())
+                    ? org.junit.platform.engine.FilterResult.excluded("reported by an earlier run")
+                    : org.junit.platform.engine.FilterResult.included("not reported yet"));
         }
         return request.build();
     }

@@ -12,35 +12,40 @@ import java.util.function.Consumer;
  * Names student code that stopped making progress: a daemon thread that, when no unit of work
  * (a tile of a render, a pixel of a trace, a test) has finished for {@link #bound()}, looks at the
  * stacks of every thread and, if one is inside a student file, reports where: "your code has run
- * for 5 s in Lambertian.diffuse (Lambertian.java:41) without returning: an endless loop?" (the
+ * for 2 s in Lambertian.diffuse (Lambertian.java:41) without returning: an endless loop?" (the
  * student's frames of a thread dump, innermost first, as raylab.cli.StudentFault names an exception
  * with the same helpers).
  * While no thread is in student code (the framework itself is busy) it keeps waiting.
  *
- * <p>The bound: a few times the reference's own time for one unit of work, with a floor of
- * {@link #FLOOR} (the reference finishes a tile or a pixel in milliseconds, so the floor rules
- * for renders and traces). Shared by {@code render}, {@code trace}, {@code check} (its renders and
- * its tests) and the grader's test JVM.
+ * <p>The bound: {@link #TIMES_REFERENCE} times the reference's own time for one unit of work,
+ * at least {@link #FLOOR} (the reference finishes a tile, a pixel, a call of the grader's or a
+ * visible test in far less, so the floor rules: no reference time per unit is recorded yet, and
+ * {@code bound(0)} is the floor). It is counted in CPU time of this process (the machine's load is
+ * not the student's: a busy loop uses a CPU all the time it runs), or, for code that waits instead
+ * of running, in wall time at {@link #WALL_TIMES} times the bound. Shared by {@code render},
+ * {@code trace} and {@code check} (its renders and its tests); the grader's student process has a
+ * watchdog of its own with the same bound and sentence ({@code raylab.remote.StudentServer}).
  */
 public final class Watchdog implements AutoCloseable {
     /** The shortest bound: no unit of work of the reference comes near it. */
-    public static final Duration FLOOR = Duration.ofSeconds(5);
+    public static final Duration FLOOR = Duration.ofSeconds(2);
     /** How many times the reference's time a unit may take before it counts as stuck. */
     public static final int TIMES_REFERENCE = 4;
+    /** How many times the bound a unit may take in wall time (code that sleeps or waits uses no CPU). */
+    public static final int WALL_TIMES = 6;
     private static final long POLL_MS = 100;
 
     private volatile Duration bound;
-    private final boolean stopThreads;
     private volatile String message;
     private final Collection<String> studentFiles;
     private final Consumer<String> onStuck;
-    private final AtomicLong last = new AtomicLong(System.nanoTime());
+    /** Units of work finished so far; the watchdog's clocks start again when it changes. */
+    private final AtomicLong units = new AtomicLong();
     private final Thread thread;
     private volatile boolean closed;
 
-    private Watchdog(Duration bound, Collection<String> studentFiles, Consumer<String> onStuck, boolean stopThreads) {
+    private Watchdog(Duration bound, Collection<String> studentFiles, Consumer<String> onStuck) {
         this.bound = bound;
-        this.stopThreads = stopThreads;
         this.studentFiles = studentFiles;
         this.onStuck = onStuck;
         this.thread = new Thread(this::watch, "raylab-watchdog");
@@ -54,13 +59,15 @@ public final class Watchdog implements AutoCloseable {
     }
 
     /**
-     * Starts watching: {@code onStuck} gets the sentence once, from the watchdog's thread, when no
-     * {@link #progress()} came for {@code bound} while some thread is in a student file; with
-     * {@code stopThreads}, the threads in student code are then stopped ({@link #message()} says why).
+     * Starts watching: {@code onStuck} gets the sentence, from the watchdog's thread, when no
+     * {@link #progress()} came for {@code bound} while some thread is in a student file. A loop
+     * that never returns cannot be asked to stop, and no thread is stopped from outside (no
+     * {@code Thread.stop}, which JDK 20 and later refuse): {@code onStuck} ends the JVM that runs
+     * it, after saying where it is ({@link #endJvm}); a caller that cannot end it is called again
+     * after each further bound.
      */
-    public static Watchdog start(Duration bound, Collection<String> studentFiles, Consumer<String> onStuck,
-            boolean stopThreads) {
-        Watchdog w = new Watchdog(bound, studentFiles, onStuck, stopThreads);
+    public static Watchdog start(Duration bound, Collection<String> studentFiles, Consumer<String> onStuck) {
+        Watchdog w = new Watchdog(bound, studentFiles, onStuck);
         w.thread.start();
         return w;
     }
@@ -72,25 +79,34 @@ public final class Watchdog implements AutoCloseable {
 
     /** A unit of work finished (any thread). */
     public void progress() {
-        last.set(System.nanoTime());
+        units.incrementAndGet();
     }
 
     private void watch() {
+        long seen = -1;
+        long wall0 = 0;
+        long cpu0 = 0;
         try {
             while (!closed) {
                 Thread.sleep(POLL_MS);
-                long idle = System.nanoTime() - last.get();
-                if (closed || idle < bound.toNanos()) {
+                long u = units.get();
+                long wall = System.nanoTime();
+                long cpu = cpuNanos();
+                if (u != seen) {
+                    seen = u;
+                    wall0 = wall;
+                    cpu0 = cpu;
                     continue;
                 }
-                Optional<String> where = stuck(Thread.getAllStackTraces(), studentFiles, Duration.ofNanos(idle));
+                Duration idle = idle(wall - wall0, cpu < 0 ? -1 : cpu - cpu0, bound);
+                if (closed || idle == null) {
+                    continue;
+                }
+                Optional<String> where = stuck(Thread.getAllStackTraces(), studentFiles, idle);
                 if (where.isPresent() && !closed) {
                     message = where.get();
                     onStuck.accept(message);
-                    if (stopThreads) {
-                        stopStudentThreads();
-                    }
-                    last.set(System.nanoTime());
+                    seen = -1;
                 }
             }
         } catch (InterruptedException e) {
@@ -99,8 +115,40 @@ public final class Watchdog implements AutoCloseable {
     }
 
     /**
+     * How long a unit of work has run, when that is past {@code bound}, else null: its CPU time
+     * ({@code cpuNanos}, −1 where unknown: then its wall time) at the bound, or its wall time at
+     * {@link #WALL_TIMES} times the bound.
+     */
+    public static Duration idle(long wallNanos, long cpuNanos, Duration bound) {
+        long b = bound.toNanos();
+        if (cpuNanos >= 0 ? cpuNanos >= b : wallNanos >= b) {
+            return Duration.ofNanos(cpuNanos >= 0 ? cpuNanos : wallNanos);
+        }
+        return wallNanos >= WALL_TIMES * b ? Duration.ofNanos(wallNanos) : null;
+    }
+
+    /**
+     * As {@link #idle(long, long, Duration)} in CPU time only, for the grader's student process,
+     * whose wall time is bounded by the grader in the student's own time (its waits for a CPU left
+     * out, {@code raylab.boundary.StudentProcess}); where this process cannot read its CPU time
+     * (the grader's sandbox mounts no /proc) in wall time at {@link #WALL_TIMES} times the bound.
+     */
+    public static Duration cpuIdle(long wallNanos, long cpuNanos, Duration bound) {
+        if (cpuNanos >= 0) {
+            return cpuNanos >= bound.toNanos() ? Duration.ofNanos(cpuNanos) : null;
+        }
+        // No CPU clock (the grader's sandbox has no /proc): only the wall time at WALL_TIMES x the bound.
+        return wallNanos >= WALL_TIMES * bound.toNanos() ? Duration.ofNanos(wallNanos) : null;
+    }
+
+    /** The CPU time of this process so far (ns), or −1 where the system does not say. */
+    public static long cpuNanos() {
+        return ProcessHandle.current().info().totalCpuDuration().map(Duration::toNanos).orElse(-1L);
+    }
+
+    /**
      * The sentence for the first thread of {@code stacks} that is inside a student file, or empty:
-     * "your code has run for 5 s in Sphere.intersect (Sphere.java:41) without returning: an
+     * "your code has run for 2 s in Sphere.intersect (Sphere.java:41) without returning: an
      * endless loop? [called from ...]".
      */
     public static Optional<String> stuck(Map<Thread, StackTraceElement[]> stacks, Collection<String> studentFiles,
@@ -132,38 +180,17 @@ public final class Watchdog implements AutoCloseable {
     }
 
     /**
-     * Ends the stuck student code: each thread in a student file gets a {@link ThreadDeath} where
-     * it is (a loop that never returns cannot be asked to stop), until {@link #close()}. On a JVM
-     * without Thread.stop, the sentence goes to standard error and the JVM exits with status 1.
+     * Says {@code line} on {@code err} and ends this JVM with {@code status} at once (no shutdown
+     * hook, no thread waits: the stuck one never would). What the command wrote so far is flushed
+     * first; a file it was writing is left unfinished only where its own temporary name keeps it
+     * from view (the PNG writer's).
      */
-    @SuppressWarnings({"deprecation", "removal"})
-    private void stopStudentThreads() throws InterruptedException {
-        java.util.Set<Thread> stuck = new java.util.HashSet<>();
-        Thread.getAllStackTraces().forEach((t, st) -> {
-            if (t != Thread.currentThread() && inStudentCode(st)) {
-                stuck.add(t);
-            }
-        });
-        while (!closed && !stuck.isEmpty()) {
-            for (Thread t : List.copyOf(stuck)) {
-                if (!t.isAlive() || !inStudentCode(t.getStackTrace())) {
-                    stuck.remove(t);
-                    continue;
-                }
-                try {
-                    t.stop();
-                } catch (UnsupportedOperationException noStop) {
-                    System.err.println("raylab: " + message);
-                    System.err.flush();
-                    Runtime.getRuntime().halt(1);
-                }
-            }
-            Thread.sleep(10);
-        }
-    }
-
-    private boolean inStudentCode(StackTraceElement[] stack) {
-        return java.util.Arrays.stream(stack).anyMatch(f -> studentFiles.contains(sourceOf(f)));
+    public static void endJvm(java.io.PrintWriter err, String line, int status) {
+        System.out.flush();
+        err.println(line);
+        err.flush();
+        System.err.flush();
+        Runtime.getRuntime().halt(status);
     }
 
     /** Sets the bound for the next unit of work (a test of its own reference time) and counts as progress. */

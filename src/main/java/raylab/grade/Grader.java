@@ -509,7 +509,9 @@ public final class Grader {
         cmd.addAll(JvmOptions.student(heapMb));
         cmd.addAll(extraJvmOptions("RAYLAB_STUDENT_JVM_OPTS"));
         cmd.addAll(List.of("-cp", String.join(java.io.File.pathSeparator, box.classPath()),
-                "raylab.remote.StudentServer", "--channel"));
+                "raylab.remote.StudentServer", "--channel",
+                // Stuck code is named after the watchdog's bound: a call of the reference takes far less.
+                raylab.remote.StudentServer.STUCK_AFTER, Long.toString(raylab.course.Watchdog.bound(0).toMillis())));
         for (String c : students) {
             cmd.add("--student");
             cmd.add(c);

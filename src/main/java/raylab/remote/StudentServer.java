@@ -79,6 +79,18 @@ public final class StudentServer {
     /** At most this many questions of one call are sent back; the grader asks again for more. */
     public static final int MAX_DEFERRED = 16;
 
+    /** Guards the writes of frames: the serving thread's and the watchdog's last one. */
+    private final Object writeLock = new Object();
+    /** The thread that serves frames (and runs the student's code). */
+    private volatile Thread serving;
+    /** The frame being served, innermost (its reply is what the grader waits for), and whether any is. */
+    private volatile int servingConv;
+    private volatile boolean busy;
+    /** Calls of the student's that returned and frames begun, so far (written by the serving thread only). */
+    private volatile long progress;
+    /** Whether the serving thread waits for the grader's answer to a callback (not the student's time). */
+    private volatile boolean waiting;
+
     StudentServer(InputStream in, OutputStream out, Set<String> studentClasses) {
         this.in = new DataInputStream(new BufferedInputStream(in, 1 << 16));
         this.out = out;
@@ -101,11 +113,14 @@ public final class StudentServer {
     public static void main(String[] args) throws IOException {
         Set<String> students = new HashSet<>();
         boolean channel = false;
+        long stuckAfter = raylab.course.Watchdog.FLOOR.toMillis();
         for (int i = 0; i < args.length; i++) {
             if (args[i].equals("--student") && i + 1 < args.length) {
                 students.add(args[++i]);
             } else if (args[i].equals("--channel")) {
                 channel = true;
+            } else if (args[i].equals(STUCK_AFTER) && i + 1 < args.length) {
+                stuckAfter = Long.parseLong(args[++i]);
             }
         }
         OutputStream proto = new BufferedOutputStream(new FileOutputStream(channel ? descriptor(CHANNEL_OUT)
@@ -137,6 +152,11 @@ public final class StudentServer {
         System.setErr(capture);
         proto.write((Wire.HELLO + "\n").getBytes(StandardCharsets.US_ASCII));
         proto.flush();
+        s.serving = Thread.currentThread();
+        long boundNanos = stuckAfter * 1_000_000L;
+        Thread watchdog = new Thread(() -> s.watch(boundNanos), "student-watchdog");
+        watchdog.setDaemon(true);
+        watchdog.start();
         try {
             s.serve();
             Runtime.getRuntime().halt(0);
@@ -234,6 +254,10 @@ public final class StudentServer {
 
     private void dispatch(Wire.Frame f) throws IOException {
         depth++;
+        int outerConv = servingConv;
+        servingConv = f.conv();
+        busy = true;
+        progress++;
         // A call the grader makes while answering a callback has no answers of its own.
         Map<Wire.Key, Integer> outerAnswerOf = answerOf;
         List<byte[]> outerAnswers = answers;
@@ -256,15 +280,86 @@ public final class StudentServer {
             used = outerUsed;
             deferred = outerDeferred;
             predicted = outerPredicted;
+            servingConv = outerConv;
             if (--depth == 0) {
+                busy = false;
                 lightIds.clear(); // the grader's numbers hold for one call
             }
         }
     }
 
     private void send(byte type, int conv) throws IOException {
-        Wire.writeFrame(out, type, conv, reply);
-        out.flush();
+        synchronized (writeLock) {
+            Wire.writeFrame(out, type, conv, reply);
+            out.flush();
+        }
+    }
+
+    /** The option that sets the watchdog's bound, in ms ({@link #watch}; default {@code Watchdog.FLOOR}). */
+    public static final String STUCK_AFTER = "--stuck-after";
+    /** The exception class a THROW frame names when the student's code was stuck (the message says where). */
+    public static final String STUCK = "raylab.remote.StudentServer$Stuck";
+    /** The exit status of a student process ended by its watchdog. */
+    public static final int STUCK_EXIT = 86;
+
+    /**
+     * The student process's watchdog: when a frame is being served and no call of the student's
+     * has returned while this process used {@code boundNanos} of CPU time (in the grader's sandbox,
+     * which has no /proc to read it from: 6 times that of wall time; never counting the time spent
+     * waiting for the grader's answers; code that waits instead of running meets the grader's wall
+     * limit, in the student's own time) and the serving thread is in the student's classes, it answers the frame the grader waits
+     * for with a THROW of {@link #STUCK} whose message says where ("your code has run for 2 s in
+     * Lambertian.diffuse (Lambertian.java:41) without returning: an endless loop?", the student's
+     * frames of the thread's stack, as {@code raylab.course.Watchdog} says it), then ends this
+     * process: a loop cannot be stopped from outside, and the grader starts a new process for its
+     * next call.
+     */
+    private void watch(long boundNanos) {
+        java.util.Collection<String> files = studentClasses.stream()
+                .map(c -> "src/main/java/" + c.replace('.', '/') + ".java").toList();
+        java.time.Duration bound = java.time.Duration.ofNanos(boundNanos);
+        long seen = -1;
+        long cpu0 = 0;
+        long wall0 = 0;
+        while (true) {
+            try {
+                Thread.sleep(100);
+            } catch (InterruptedException e) {
+                return;
+            }
+            long u = progress;
+            long cpu = raylab.course.Watchdog.cpuNanos();
+            long wall = System.nanoTime();
+            Thread t = serving;
+            if (u != seen || !busy || waiting || t == null) {
+                seen = waiting || !busy ? -1 : u; // the grader's time, or none served: the clocks start again
+                cpu0 = cpu;
+                wall0 = wall;
+                continue;
+            }
+            java.time.Duration idle = raylab.course.Watchdog.cpuIdle(wall - wall0, cpu < 0 ? -1 : cpu - cpu0, bound);
+            if (idle == null) {
+                continue;
+            }
+            java.util.Optional<String> where = raylab.course.Watchdog.stuck(Map.of(t, t.getStackTrace()), files, idle);
+            if (where.isEmpty() || waiting || !busy) {
+                continue;
+            }
+            synchronized (writeLock) {
+                try {
+                    Wire.Out o = new Wire.Out();
+                    o.writeString(STUCK);
+                    o.writeString(where.get());
+                    o.writeInt(0);
+                    o.writeString(drainOutput());
+                    Wire.writeFrame(out, Wire.THROW, servingConv, o);
+                    out.flush();
+                } catch (IOException | RuntimeException e) {
+                    // the grader is gone: nothing to tell
+                }
+                Runtime.getRuntime().halt(STUCK_EXIT);
+            }
+        }
     }
 
     private void define(Wire.Frame f) throws IOException {
@@ -509,7 +604,7 @@ public final class StudentServer {
         }
     }
 
-    private static Object invoke(Method m, Object target, Object[] args) throws Throwable {
+    private Object invoke(Method m, Object target, Object[] args) throws Throwable {
         if (!accepts(m.getParameterTypes(), args)) {
             throw new IllegalArgumentException("the arguments do not fit " + m);
         }
@@ -517,6 +612,8 @@ public final class StudentServer {
             return m.invoke(target, args);
         } catch (InvocationTargetException e) {
             throw e.getCause();
+        } finally {
+            progress++; // a call of the student's returned
         }
     }
 
@@ -591,10 +688,15 @@ public final class StudentServer {
                 return v;
             }
             int conv = nextConv++;
-            Wire.writeFrame(out, Wire.CALLBACK, conv, o);
-            out.flush();
+            waiting = true;
+            synchronized (writeLock) {
+                Wire.writeFrame(out, Wire.CALLBACK, conv, o);
+                out.flush();
+            }
             while (true) {
                 Wire.Frame f = Wire.readFrame(in);
+                // The grader's time answering is not the student's (the watchdog's clocks wait).
+                waiting = false;
                 if (f.type() == Wire.CB_RETURN && f.conv() == conv) {
                     Object v = Wire.readValue(f.in(), refs);
                     for (Object a : args) {
@@ -607,6 +709,7 @@ public final class StudentServer {
                     throw new GraderFailure(f.in().readString());
                 } else {
                     dispatch(f);
+                    waiting = true;
                 }
             }
         } catch (IOException e) {

@@ -1,6 +1,7 @@
 package raylab.cli;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import java.io.File;
@@ -11,14 +12,19 @@ import java.util.ArrayList;
 import java.util.LinkedHashMap;
 import java.util.List;
 import java.util.Map;
+import java.util.concurrent.Callable;
+import java.util.concurrent.ExecutorService;
+import java.util.concurrent.Executors;
+import java.util.concurrent.Future;
 import java.util.concurrent.TimeUnit;
 import java.util.regex.Matcher;
 import java.util.regex.Pattern;
 import java.util.stream.Stream;
 
+import org.junit.jupiter.api.AfterAll;
 import org.junit.jupiter.api.BeforeAll;
-import org.junit.jupiter.params.ParameterizedTest;
-import org.junit.jupiter.params.provider.MethodSource;
+import org.junit.jupiter.api.DynamicTest;
+import org.junit.jupiter.api.TestFactory;
 
 import raylab.course.Assignment;
 import raylab.course.Assignments;
@@ -27,19 +33,24 @@ import raylab.course.MilestoneBuild;
 import raylab.course.Watchdog;
 
 /**
- * An endless loop in each graded method is stopped and named ("your code has run for 5 s in
+ * An endless loop in each graded method is stopped and named ("your code has run for 2 s in
  * Lambertian.diffuse (Lambertian.java:38) without returning: an endless loop?") by {@code render},
- * {@code trace} and {@code check}, after the watchdog's bound ({@link Watchdog#FLOOR}: the
- * reference finishes a tile, a pixel or a visible test in far less) instead of the old 300 s of a
- * render or 10 s of each test. Each case runs raylab in a JVM of its own with the looping file
- * compiled first on the class path.
+ * {@code trace}, {@code check} and the grader (its student process, for its tests and its
+ * renders), after the watchdog's bound ({@link Watchdog#FLOOR} of CPU time: the reference finishes
+ * a tile, a pixel, a call or a visible test in far less) instead of the old 300 s of a render or
+ * 10 s of each test. Each command runs in a JVM of its own with the looping file compiled first on
+ * the class path (the grader: in the submission, one grading for the first method of each
+ * milestone together and one for the others). The runs go three at a time,
+ * each {@code check} after the one before (they share target/check) and each grading after the
+ * one before (they share the grader's cache).
  */
 class EndlessLoopTest {
-    /** The graded methods: file, method, and the pixel of its milestone's first scene traced. */
-    static final Map<String, String> METHODS = new LinkedHashMap<>();
     static final Path ROOT = Path.of("").toAbsolutePath();
+    /** Graded method (Class.method) to its file and milestone. */
+    static final Map<String, String> FILE = new LinkedHashMap<>();
+    static final Map<String, Assignment> OWNER = new LinkedHashMap<>();
     static Path dir;
-    static Map<String, Assignment> owner = new LinkedHashMap<>();
+    static ExecutorService pool;
 
     @BeforeAll
     static void overlays() throws IOException {
@@ -47,12 +58,12 @@ class EndlessLoopTest {
         for (Assignment a : Assignments.load(ROOT).all()) {
             for (Assignment.StudentFile f : a.files()) {
                 for (String m : f.methods()) {
-                    METHODS.put(m, f.path());
-                    owner.put(m, a);
+                    FILE.put(m, f.path());
+                    OWNER.put(m, a);
                 }
             }
         }
-        for (var e : METHODS.entrySet()) {
+        for (var e : FILE.entrySet()) {
             String name = e.getKey().substring(e.getKey().indexOf('.') + 1);
             String text = Files.readString(ROOT.resolve(e.getValue()));
             Matcher decl = Pattern.compile("\\n    public [^\\n;=]*\\b" + name + "\\([^)]*\\)\\s*\\{").matcher(text);
@@ -64,32 +75,71 @@ class EndlessLoopTest {
                     JavaBuild.ownClassPath(), dir.resolve(e.getKey()));
             assertTrue(r.success(), e.getKey() + ": " + r.errors());
         }
+        pool = Executors.newFixedThreadPool(3);
     }
 
-    static Stream<String> methods() throws IOException {
-        List<String> out = new ArrayList<>();
-        for (Assignment a : Assignments.load(Path.of("").toAbsolutePath()).all()) {
-            a.files().forEach(f -> out.addAll(f.methods()));
+    @AfterAll
+    static void stop() {
+        pool.shutdownNow();
+    }
+
+    /** What a run of raylab said: exit status, standard output, standard error. */
+    record Ran(int status, String out, String err) {
+        String both() {
+            return out + "\n" + err;
         }
-        return out.stream();
     }
 
-    /** raylab ARGS in a JVM whose class path starts with the looping file of {@code method}. */
-    static String[] run(String method, String... args) throws Exception {
+    /** raylab ARGS in a JVM whose class path starts with {@code first} (null: none). */
+    static Ran run(Path first, String... args) throws Exception {
+        return run(first, 300, args);
+    }
+
+    /** As {@link #run(Path, String...)}, stopped after {@code guardSeconds} (a guard only). */
+    static Ran run(Path first, int guardSeconds, String... args) throws Exception {
         Path out = Files.createTempFile(dir, "out", ".txt");
         Path err = Files.createTempFile(dir, "err", ".txt");
         List<String> cmd = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
-                "-cp", dir.resolve(method) + File.pathSeparator + System.getProperty("java.class.path"),
-                "raylab.cli.Main"));
+                "-XX:TieredStopAtLevel=1", "-cp", (first == null ? "" : first + File.pathSeparator)
+                        + System.getProperty("java.class.path"), "raylab.cli.Main"));
         cmd.addAll(List.of(args));
         Process p = new ProcessBuilder(cmd).directory(ROOT.toFile()).redirectOutput(out.toFile())
                 .redirectError(err.toFile()).start();
         // A guard only (the old limit): the assertions are on what raylab says.
-        if (!p.waitFor(300, TimeUnit.SECONDS)) {
+        if (!p.waitFor(guardSeconds, TimeUnit.SECONDS)) {
             p.descendants().forEach(ProcessHandle::destroyForcibly);
             p.destroyForcibly();
         }
-        return new String[] {Integer.toString(p.waitFor()), Files.readString(out), Files.readString(err)};
+        return new Ran(p.waitFor(), Files.readString(out), Files.readString(err));
+    }
+
+    /**
+     * {@code render --watch} (which runs {@code render} in a JVM of its own at each save), until it
+     * waits for the next save: what it printed. Its home is an empty folder, so that it builds
+     * nothing and watches no file of this project.
+     */
+    static String renderWatch(String method) throws Exception {
+        Path out = Files.createTempFile(dir, "watch", ".txt");
+        Path home = Files.createDirectories(dir.resolve("watch-home-" + method));
+        String scene = OWNER.get(method).scenes().get(0).scene();
+        List<String> cmd = List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
+                "-XX:TieredStopAtLevel=1", "-Draylab.home=" + home, "-cp", dir.resolve(method) + File.pathSeparator
+                        + System.getProperty("java.class.path"), "raylab.cli.Main", "render", scene, "--watch", "-o",
+                dir.resolve(method + "-watch.png").toString(), "--quiet", "--threads", "1");
+        Process p = new ProcessBuilder(cmd).directory(ROOT.toFile()).redirectErrorStream(true)
+                .redirectOutput(out.toFile()).start();
+        try {
+            // A guard only (the old limit): the assertion is on what it says.
+            for (long end = System.nanoTime() + 300_000_000_000L; System.nanoTime() < end && p.isAlive()
+                    && !Files.readString(out).contains("waiting for the next save");) {
+                Thread.sleep(200);
+            }
+        } finally {
+            p.descendants().forEach(ProcessHandle::destroyForcibly);
+            p.destroyForcibly();
+            p.waitFor();
+        }
+        return Files.readString(out);
     }
 
     /** The sentence naming {@code method} in its own file, after at least the bound. */
@@ -101,63 +151,128 @@ class EndlessLoopTest {
         assertTrue(Long.parseLong(m.group(1)) >= Watchdog.FLOOR.toSeconds(), "stopped after the bound: " + m.group());
     }
 
-    @ParameterizedTest
-    @MethodSource("methods")
-    void renderStopsAndNamesIt(String method) throws Exception {
-        String scene = owner.get(method).scenes().get(0).scene();
-        String[] r = run(method, "render", scene, "-o", dir.resolve(method + ".png").toString(), "--quiet",
-                "--threads", "2");
-        assertEquals("1", r[0], "exit status; stderr: " + r[2]);
-        assertNamed(method, r[2]);
-        assertTrue(r[2].contains("while rendering " + scene), r[2]);
-        assertTrue(!Files.exists(dir.resolve(method + ".png")), "no picture written");
+    static Ran render(String method) throws Exception {
+        String scene = OWNER.get(method).scenes().get(0).scene();
+        return run(dir.resolve(method), "render", scene, "-o", dir.resolve(method + ".png").toString(), "--quiet",
+                "--threads", "1");
     }
 
-    @ParameterizedTest
-    @MethodSource("methods")
-    void traceStopsAndNamesIt(String method) throws Exception {
-        String scene = owner.get(method).scenes().get(0).scene();
+    static Ran trace(String method) throws Exception {
+        String scene = OWNER.get(method).scenes().get(0).scene();
         raylab.scene.Scene sc = raylab.scene.SceneLoader.load(ROOT.resolve(scene));
-        String x = Integer.toString(sc.width / 2);
-        String y = Integer.toString(sc.height / 2);
-        String[] r = run(method, "trace", scene, "--pixel", x, y);
-        assertEquals("1", r[0], "exit status; stdout: " + r[1] + " stderr: " + r[2]);
-        assertNamed(method, r[2]);
-        assertTrue(r[2].contains("while tracing pixel (" + x + ", " + y + ") of " + scene), r[2]);
-    }
-
-    /** check: every visible test that reaches the loop and every scene of the milestone say where it is. */
-    @ParameterizedTest
-    @MethodSource("methods")
-    void checkStopsAndNamesIt(String method) throws Exception {
-        Assignment a = owner.get(method);
-        String[] r = run(method, "check", a.id(), "--threads", "2");
-        assertEquals("1", r[0], "exit status; stdout: " + r[1] + " stderr: " + r[2]);
-        assertNamed(method, r[1]);
-        for (Assignment.GradedScene g : a.scenes()) {
-            assertTrue(r[1].lines().anyMatch(l -> l.contains(g.scene()) && l.contains("without returning: an endless loop?")),
-                    "scene " + g.scene() + " names the loop:\n" + r[1]);
-        }
+        return run(dir.resolve(method), "trace", scene, "--pixel", Integer.toString(sc.width / 2),
+                Integer.toString(sc.height / 2));
     }
 
     /**
-     * The grader (with its process boundary, where the student's code runs in a JVM of its own):
-     * each test that reaches the loop is reported with the same sentence, not as a bare timeout.
+     * The grader, with its process boundary (the student's code runs in a JVM of its own), every
+     * milestone: a submission with the looping files of {@code methods} (one per milestone) and
+     * the reference's other files of their milestones.
      */
-    @org.junit.jupiter.api.Test
-    void theGraderNamesIt() throws Exception {
-        String method = "Lambertian.diffuse";
-        Path sub = Files.createDirectories(dir.resolve("submission"));
-        Files.copy(dir.resolve("src-" + method).resolve("raylab/material/Lambertian.java"), sub.resolve("Lambertian.java"));
-        Files.copy(ROOT.resolve("src/main/java/raylab/shading/Shading.java"), sub.resolve("Shading.java"));
-        Path results = dir.resolve("results");
-        java.io.StringWriter err = new java.io.StringWriter();
-        int status = Main.run(new java.io.PrintWriter(new java.io.StringWriter(), true), new java.io.PrintWriter(err, true),
-                "grade", sub.toString(), "--out", results.toString(), "--root", ROOT.toString(), "--quiet",
-                "--milestone", "lambert", "--test-timeout", "8", "--milestone-timeout", "240", "--scene-timeout", "10",
-                "--heap", "256", "--sandbox-user", "");
-        assertEquals(0, status, err::toString);
-        String report = Files.readString(results.resolve("results.json"));
-        assertNamed(method, report);
+    static Ran grade(String name, List<String> methods) throws Exception {
+        Path sub = Files.createDirectories(dir.resolve("submission-" + name));
+        for (String method : methods) {
+            for (Assignment.StudentFile f : OWNER.get(method).files()) {
+                Path looping = dir.resolve("src-" + method).resolve(f.path().substring("src/main/java/".length()));
+                Path to = sub.resolve(Path.of(f.path()).getFileName().toString());
+                if (Files.isRegularFile(looping) || !Files.exists(to)) {
+                    Files.copy(Files.isRegularFile(looping) ? looping : ROOT.resolve(f.path()), to,
+                            java.nio.file.StandardCopyOption.REPLACE_EXISTING);
+                }
+            }
+        }
+        Path results = dir.resolve("results-" + name);
+        // The first grading may build the grader's cache (the tests run on the reference): a longer guard.
+        Ran r = run(null, 900, "grade", sub.toString(), "--out", results.toString(), "--root", ROOT.toString(), "--quiet",
+                "--sandbox-user", "", "--seed", "7");
+        Path json = results.resolve("results.json");
+        return new Ran(r.status(), Files.isRegularFile(json) ? Files.readString(json) : "", r.err());
+    }
+
+    /** The methods graded together: one per milestone (the first of each), then the others. */
+    static List<List<String>> gradings() {
+        List<List<String>> out = new ArrayList<>();
+        for (String method : FILE.keySet()) {
+            List<String> into = out.stream().filter(g -> g.stream().noneMatch(m -> OWNER.get(m) == OWNER.get(method)))
+                    .findFirst().orElse(null);
+            if (into == null) {
+                into = new ArrayList<>();
+                out.add(into);
+            }
+            into.add(method);
+        }
+        return out;
+    }
+
+    @TestFactory
+    Stream<DynamicTest> aLoopInEachMethodIsStoppedAndNamedByEachCommand() throws Exception {
+        Map<String, Future<Ran>> runs = new LinkedHashMap<>();
+        // check for each method's milestone, one after the other in one task: they share
+        // target/check and its build (and each run has the whole-run wall clock of its own).
+        Map<String, Ran> checks = new java.util.concurrent.ConcurrentHashMap<>();
+        Future<?> checking = pool.submit(() -> {
+            for (String method : FILE.keySet()) {
+                checks.put(method, run(dir.resolve(method), "check", OWNER.get(method).id(), "--threads", "1"));
+            }
+            return null;
+        });
+        // The gradings one after the other too: the first builds the grader's cache, the next reuse it.
+        Map<String, Ran> grades = new java.util.concurrent.ConcurrentHashMap<>();
+        Future<?> grading = pool.submit(() -> {
+            int n = 0;
+            for (List<String> methods : gradings()) {
+                Ran r = grade("g" + ++n, methods);
+                methods.forEach(m -> grades.put(m, r));
+            }
+            return null;
+        });
+        String watched = FILE.keySet().iterator().next();
+        Future<String> watching = pool.submit(() -> renderWatch(watched));
+        for (String method : FILE.keySet()) {
+            runs.put("render " + method, pool.submit((Callable<Ran>) () -> render(method)));
+            runs.put("trace " + method, pool.submit((Callable<Ran>) () -> trace(method)));
+        }
+        List<DynamicTest> tests = new ArrayList<>();
+        tests.add(DynamicTest.dynamicTest("render --watch names " + watched + " and waits for the next save", () -> {
+            String said = watching.get();
+            assertNamed(watched, said);
+            assertTrue(said.contains("waiting for the next save"), said);
+        }));
+        for (String method : FILE.keySet()) {
+            String scene = OWNER.get(method).scenes().get(0).scene();
+            tests.add(DynamicTest.dynamicTest("render stops and names " + method, () -> {
+                Ran r = runs.get("render " + method).get();
+                assertEquals(1, r.status(), "exit status; stderr: " + r.err());
+                assertNamed(method, r.err());
+                assertTrue(r.err().contains(" while rendering " + scene), r.err());
+                assertEquals(1, r.err().strip().lines().count(), "one line: " + r.err());
+                assertFalse(Files.exists(dir.resolve(method + ".png")), "no picture written");
+            }));
+            tests.add(DynamicTest.dynamicTest("trace stops and names " + method, () -> {
+                Ran r = runs.get("trace " + method).get();
+                assertEquals(1, r.status(), "exit status; stdout: " + r.out() + " stderr: " + r.err());
+                assertNamed(method, r.err());
+                assertTrue(r.err().contains(" while tracing pixel ("), r.err());
+            }));
+            tests.add(DynamicTest.dynamicTest("check stops and names " + method, () -> {
+                checking.get();
+                Ran r = checks.get(method);
+                assertEquals(1, r.status(), "exit status; stdout: " + r.out() + " stderr: " + r.err());
+                assertNamed(method, r.out());
+                for (Assignment.GradedScene g : OWNER.get(method).scenes()) {
+                    assertTrue(r.out().lines().anyMatch(l -> l.contains(g.scene())
+                            && l.contains("without returning: an endless loop?")),
+                            "scene " + g.scene() + " names the loop:\n" + r.out());
+                }
+            }));
+            tests.add(DynamicTest.dynamicTest("the grader stops and names " + method, () -> {
+                grading.get();
+                Ran r = grades.get(method);
+                assertEquals(0, r.status(), "exit status; stderr: " + r.err());
+                assertNamed(method, r.out());
+                assertTrue(r.out().contains("\"score\""), "graded: " + r.out());
+            }));
+        }
+        return tests.stream();
     }
 }
