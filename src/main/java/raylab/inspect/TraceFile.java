@@ -77,7 +77,7 @@ public final class TraceFile {
      * The most pixels a trace keeps: a larger scene's trace would keep every k-th pixel of every
      * k-th row, k the smallest that fits ({@code inspect} and {@code check} then show the nearest
      * traced pixel). 1,000,000 keeps every pixel of every published scene (the largest,
-     * showcase.json, is 1280×720): the 15 traces are 1.88 MB, the starter 2.52 MB as a .tar.gz
+     * showcase.json, is 1280×720): the 15 traces are 1.80 MB, the starter 2.44 MB as a .tar.gz
      * (README, "See why a pixel is wrong"; the release writes them, {@code ReferenceTraces}).
      */
     public static final int MAX_TRACED = 1_000_000;
