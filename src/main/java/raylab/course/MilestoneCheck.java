@@ -247,7 +247,32 @@ public final class MilestoneCheck {
      */
     public static List<Outcome> run(Path root, List<Assignment> selected, int threads, Consumer<String> progress,
             List<Path> first, boolean renderScenes) throws IOException {
+        // One check at a time per project: each begins by clearing target/check/run, where another
+        // check's test JVM may be working (check --watch beside a check, or submit-check).
         Path work = root.resolve("target/check");
+        Files.createDirectories(work);
+        synchronized (CHECK_LOCK) {
+            try (java.nio.channels.FileChannel f = java.nio.channels.FileChannel.open(work.resolve(".lock"),
+                    java.nio.file.StandardOpenOption.CREATE, java.nio.file.StandardOpenOption.WRITE)) {
+                java.nio.channels.FileLock lock = f.tryLock();
+                if (lock == null) {
+                    progress.accept("waiting for another check of this project to finish ...");
+                    lock = f.lock();
+                }
+                try {
+                    return runLocked(root, work, selected, threads, progress, first, renderScenes);
+                } finally {
+                    lock.release();
+                }
+            }
+        }
+    }
+
+    /** Held by the check of this JVM that holds target/check's file lock. */
+    private static final Object CHECK_LOCK = new Object();
+
+    private static List<Outcome> runLocked(Path root, Path work, List<Assignment> selected, int threads,
+            Consumer<String> progress, List<Path> first, boolean renderScenes) throws IOException {
         List<Path> own = new ArrayList<>(first);
         own.addAll(JavaBuild.ownClassPath());
         Path helpers = work.resolve("helpers");
