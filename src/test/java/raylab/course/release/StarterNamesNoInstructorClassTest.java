@@ -21,6 +21,7 @@ import java.util.stream.Stream;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
 
+import raylab.course.SourceRoots;
 import raylab.grade.ServiceFiles;
 
 /**
@@ -41,6 +42,9 @@ class StarterNamesNoInstructorClassTest {
         Set<String> starter = Release.build(ROOT.toAbsolutePath()).files().keySet();
         Set<String> shipped = new TreeSet<>();
         starter.stream().map(StarterNamesNoInstructorClassTest::className).filter(n -> n != null).forEach(shipped::add);
+        // The tools ship too, as the starter's jar.
+        Set<String> tools = SourceRoots.classesUnder(ROOT.toAbsolutePath(), SourceRoots.TOOLS);
+        shipped.addAll(tools);
         Set<String> instructor = new TreeSet<>();
         for (String rel : Release.projectFiles(ROOT.toAbsolutePath())) {
             String name = className(rel);
@@ -52,15 +56,17 @@ class StarterNamesNoInstructorClassTest {
                 "the instructor-only classes are found: " + instructor.size() + " of them");
         List<String> found = new ArrayList<>();
         int read = 0;
-        for (String rel : starter) {
-            Path classes = rel.startsWith("src/main/java/") ? Path.of("target/classes")
+        List<String> shippedSources = new ArrayList<>(starter);
+        tools.forEach(t -> shippedSources.add(SourceRoots.TOOLS + "/" + t.replace('.', '/') + ".java"));
+        for (String rel : shippedSources) {
+            Path classes = rel.startsWith("src/main/java/") || rel.startsWith("src/tools/java/") ? Path.of("target/classes")
                     : rel.startsWith("src/test/java/") ? Path.of("target/test-classes") : null;
             if (classes == null || !rel.endsWith(".java")) {
                 continue;
             }
             String base = rel.substring(rel.indexOf("/java/") + 6, rel.length() - 5);
             List<Path> compiled = compiledClasses(classes, base);
-            if (rel.startsWith("src/main/java/")) {
+            if (!rel.startsWith("src/test/java/")) {
                 assertTrue(!compiled.isEmpty(), rel + " ships, but no class compiled from it is in " + classes);
             }
             for (Path c : compiled) {
@@ -82,7 +88,10 @@ class StarterNamesNoInstructorClassTest {
         Map<String, byte[]> starter = Release.build(ROOT.toAbsolutePath()).files();
         for (String service : List.of("raylab.cli.OptionalCommand", "raylab.surface.PackedEngine",
                 "raylab.course.BoundaryHooks")) {
-            Path file = Path.of(ServiceFiles.SOURCE_FOLDER + service);
+            // Each module registers its providers in its own resources (docs/architecture.md).
+            Path file = Stream.of("src/main/resources/", "src/mesh-engine/resources/", "grader/src/main/resources/",
+                    "src/authoring/resources/").map(r -> Path.of(r + ServiceFiles.FOLDER + service))
+                    .filter(Files::isRegularFile).findFirst().orElse(Path.of(ServiceFiles.SOURCE_FOLDER + service));
             assertTrue(Files.isRegularFile(file) && !ServiceFiles.providers(Files.readString(file)).isEmpty(),
                     "the instructor's tree provides " + service);
             assertEquals(null, starter.get(ServiceFiles.SOURCE_FOLDER + service) == null ? null
@@ -134,7 +143,8 @@ class StarterNamesNoInstructorClassTest {
         if (!rel.endsWith(".java") || rel.endsWith("package-info.java") || rel.endsWith("module-info.java")) {
             return null;
         }
-        for (String root : List.of("src/main/java/", "src/test/java/", "grader/tests/")) {
+        for (String root : List.of("src/main/java/", "src/tools/java/", "src/mesh-engine/java/", "grader/src/main/java/",
+                "src/authoring/java/", "src/test/java/", "grader/tests/")) {
             if (rel.startsWith(root)) {
                 return rel.substring(root.length(), rel.length() - 5).replace('/', '.');
             }

@@ -41,9 +41,13 @@ class StarterNamesNothingHiddenTest {
     void theStarterPomHasNoMutationProfileAndTheStarterNamesNoHiddenTest() throws IOException {
         String pom = Files.readString(Path.of("pom.xml"));
         assertTrue(pom.contains("<id>mutation</id>") && pom.contains("HiddenTest"), "the instructor's pom names them");
-        String starterPom = Release.starterPom(pom);
+        String version = ToolsJar.build(Path.of("").toAbsolutePath()).version();
+        String starterPom = Release.starterPom(pom, version);
         assertFalse(starterPom.contains("<id>mutation</id>") || starterPom.contains("HiddenTest")
-                || starterPom.contains("grader/"), "the starter's pom:\n" + starterPom);
+                || starterPom.contains("grader/") || starterPom.contains("<id>course</id>")
+                || starterPom.contains("src/tools/java</source>"), "the starter's pom:\n" + starterPom);
+        assertTrue(starterPom.contains("<raylab.tools.version>" + version + "</raylab.tools.version>")
+                && starterPom.contains("<artifactId>raylab-tools</artifactId>"), "the starter's pom names the tools jar");
         assertTrue(starterPom.contains("<artifactId>maven-surefire-plugin</artifactId>") && starterPom.contains("</project>"),
                 "the rest of the pom stays");
         Path starter = dir.resolve("starter");

@@ -413,13 +413,39 @@ public final class ReleaseVerifier {
                 }
             }
         }
-        for (String f : List.of("src/main/java/raylab/cli/SubmitCheckCommand.java",
-                "src/main/java/raylab/course/Submission.java", "src/main/java/raylab/course/PackageScanner.java")) {
-            if (!Files.isRegularFile(starter.resolve(f))) {
-                problems.add(f + " is not in the starter (./raylab submit-check needs it)");
+        Path jar = toolsJar(starter);
+        Set<String> entries = new HashSet<>();
+        if (jar == null) {
+            problems.add("the starter has no tools jar (" + ToolsJar.REPOSITORY + "/.../" + ToolsJar.ARTIFACT + "-*.jar)");
+        } else {
+            try (java.util.jar.JarFile j = new java.util.jar.JarFile(jar.toFile())) {
+                j.stream().forEach(e -> entries.add(e.getName()));
+            }
+        }
+        for (String c : SUBMIT_CLASSES) {
+            if (jar != null && !entries.contains(c.replace('.', '/') + ".class")) {
+                problems.add(c + " is not in the starter's tools jar (./raylab submit-check needs it)");
             }
         }
         return problems;
+    }
+
+    /** The classes ./raylab submit-check runs in the starter: the command and the grader's intake. */
+    static final List<String> SUBMIT_CLASSES = List.of("raylab.cli.SubmitCheckCommand", "raylab.course.Submission",
+            "raylab.course.PackageScanner");
+
+    /** The starter's tools jar (not its sources jar), or null when there is none. */
+    static Path toolsJar(Path starter) throws IOException {
+        Path lib = starter.resolve(ToolsJar.REPOSITORY);
+        if (!Files.isDirectory(lib)) {
+            return null;
+        }
+        try (var s = Files.walk(lib)) {
+            return s.filter(p -> {
+                String n = p.getFileName().toString();
+                return n.startsWith(ToolsJar.ARTIFACT + "-") && n.endsWith(".jar") && !n.endsWith("-sources.jar");
+            }).sorted().findFirst().orElse(null);
+        }
     }
 
     // ---------------------------------------------------------------- compile and discover

@@ -32,6 +32,7 @@ import com.fasterxml.jackson.databind.ObjectMapper;
 
 import raylab.course.Assignment;
 import raylab.course.JavaBuild;
+import raylab.course.SourceRoots;
 import raylab.course.TestLauncher;
 import raylab.course.TestResult;
 
@@ -325,26 +326,22 @@ final class GraderSetup {
         below.add(t.framework);
         below.addAll(libs);
         raylab.boundary.StandIns.compile(stubs, below, t.publicStubs);
-        // The public framework: what the release puts in the starter, no more.
-        List<String> left = new ArrayList<>(List.of("raylab/boundary/"));
-        Path release = root.resolve("assignments/release.json");
-        if (Files.isRegularFile(release)) {
-            for (JsonNode e : JSON.readTree(release.toFile()).path("exclude")) {
-                String x = e.asText();
-                if (x.startsWith("src/main/java/") && x.endsWith("/**")) {
-                    left.add(x.substring("src/main/java/".length(), x.length() - 2));
-                } else if (x.startsWith("src/main/java/") && x.endsWith(".java")) {
-                    left.add(x.substring("src/main/java/".length(), x.length() - 5));
-                }
-            }
+        // The public framework: what the release puts in the starter, no more: the classes of the
+        // lab and the tools (docs/architecture.md), never the grader's, authoring's or the mesh engine's.
+        java.util.Set<String> shipped = new java.util.TreeSet<>(SourceRoots.classesUnder(root, SourceRoots.LAB));
+        java.util.Set<String> tools = SourceRoots.classesUnder(root, SourceRoots.TOOLS);
+        if (tools.isEmpty()) {
+            throw new IOException(root.resolve(SourceRoots.TOOLS) + ": missing (the grader builds the public framework"
+                    + " from the lab's and the tools' sources)");
         }
+        shipped.addAll(tools);
         // One jar file, so that a student box links it instead of copying thousands of files.
         try (JarFile jar = new JarFile(t.framework.toFile());
                 var out = new java.util.jar.JarOutputStream(Files.newOutputStream(t.publicFramework))) {
             List<JarEntry> kept = jar.stream().filter(en -> {
                 String n = en.getName();
                 return !(en.isDirectory() || n.startsWith("META-INF/") && !n.startsWith(ServiceFiles.FOLDER)
-                        || left.stream().anyMatch(x -> x.endsWith("/") ? n.startsWith(x) : isClassOf(n, x)));
+                        || n.startsWith("raylab/") && n.endsWith(".class") && !SourceRoots.compiledFrom(n, shipped));
             }).toList();
             java.util.Set<String> names = kept.stream().map(JarEntry::getName).collect(Collectors.toSet());
             for (JarEntry en : kept) {

@@ -68,6 +68,9 @@ public final class Release {
             }
         }
         SortedMap<String, byte[]> out = new TreeMap<>();
+        // The tools as a jar with its sources (docs/architecture.md); the lab comes as source below.
+        ToolsJar.Built tools = ToolsJar.build(root);
+        out.putAll(tools.files());
         List<String> stubbed = new ArrayList<>();
         boolean anyVisibleCase = false;
         for (String rel : projectFiles(root)) {
@@ -108,7 +111,8 @@ public final class Release {
                 String text = new String(bytes, StandardCharsets.UTF_8);
                 bytes = HandoutTable.update(text, GradingPlan.of(root, owner)).getBytes(StandardCharsets.UTF_8);
             } else if (rel.equals("pom.xml")) {
-                bytes = starterPom(new String(bytes, StandardCharsets.UTF_8)).getBytes(StandardCharsets.UTF_8);
+                bytes = starterPom(new String(bytes, StandardCharsets.UTF_8), tools.version())
+                        .getBytes(StandardCharsets.UTF_8);
             } else if (rel.equals(SCENE_SCHEMA)) {
                 // Surface types registered on the class path (raylab.scene.SurfaceType) join the schema.
                 bytes = raylab.scene.SurfaceTypes.schemaWithExtensions(new String(bytes, StandardCharsets.UTF_8))
@@ -171,16 +175,24 @@ public final class Release {
     }
 
     /**
-     * The starter's pom.xml: the instructor's without its {@code mutation} profile (and the comment
-     * before it), which names every hidden test class and the grader's folder.
+     * The starter's pom.xml: the instructor's without its {@code course} profile (the other modules'
+     * source roots) and its {@code mutation} profile (which names every hidden test class and the
+     * grader's folder), each with the comment before it, and with the tools jar's version.
      */
-    static String starterPom(String pom) {
-        int id = pom.indexOf("<id>mutation</id>");
-        if (id < 0) {
+    static String starterPom(String pom, String toolsVersion) {
+        String out = withoutProfile(withoutProfile(pom, "course"), "mutation");
+        return out.replaceFirst("<raylab\\.tools\\.version>[^<]*</raylab\\.tools\\.version>",
+                "<raylab.tools.version>" + toolsVersion + "</raylab.tools.version>");
+    }
+
+    /** {@code pom} without the profile of that id and the comment right before it. */
+    static String withoutProfile(String pom, String id) {
+        int at = pom.indexOf("<id>" + id + "</id>");
+        if (at < 0) {
             return pom;
         }
-        int start = pom.lastIndexOf("<profile>", id);
-        int end = pom.indexOf("</profile>", id);
+        int start = pom.lastIndexOf("<profile>", at);
+        int end = pom.indexOf("</profile>", at);
         if (start < 0 || end < 0) {
             return pom;
         }

@@ -15,6 +15,7 @@ import java.util.TreeSet;
 import raylab.course.Assignment;
 import raylab.course.Assignments;
 import raylab.course.JavaBuild;
+import raylab.course.SourceRoots;
 
 /**
  * The student's loop without Maven: after the first full build ({@code target/raylab.jar}), a
@@ -93,9 +94,13 @@ public final class Incremental {
         if (Files.isRegularFile(pom) && Files.getLastModifiedTime(pom).toMillis() > builtAt) {
             full.add(pom);
         }
-        List<Path> sources;
-        try (var s = Files.walk(root.resolve("src/main"))) {
-            sources = s.filter(Files::isRegularFile).sorted().toList();
+        List<Path> sources = new ArrayList<>();
+        for (String r : SourceRoots.all()) { // the lab's, and in the instructor's tree the other modules'
+            if (Files.isDirectory(root.resolve(r))) {
+                try (var s = Files.walk(root.resolve(r))) {
+                    s.filter(Files::isRegularFile).sorted().forEach(sources::add);
+                }
+            }
         }
         for (Path p : sources) {
             String key = key(p);

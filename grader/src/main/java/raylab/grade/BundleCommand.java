@@ -22,6 +22,7 @@ import raylab.cli.UserError;
 import raylab.course.Assignment;
 import raylab.course.Assignments;
 import raylab.course.JavaBuild;
+import raylab.course.SourceRoots;
 
 /**
  * {@code raylab bundle TARGET --out PATH}: what a grading platform needs.
@@ -262,9 +263,11 @@ public final class BundleCommand implements Callable<Integer>, OptionalCommand {
         files.addAll(walk(r.resolve("grader/tests")));
         files.addAll(walk(r.resolve("scenes")));
         files.addAll(walk(r.resolve("src/test/java/raylab/testing")));
-        // The framework's sources: the cache builds the public stubs and stand-ins from them.
-        files.addAll(walk(r.resolve("src/main/java")));
-        files.addAll(walk(r.resolve("src/main/resources")));
+        // The lab's sources: the cache builds the public stubs and stand-ins from them; the lab's and
+        // the tools' sources say which classes the public framework has (docs/architecture.md).
+        files.addAll(walk(r.resolve(SourceRoots.LAB)));
+        files.addAll(walk(r.resolve(SourceRoots.LAB_RESOURCES)));
+        files.addAll(walk(r.resolve(SourceRoots.TOOLS)));
         for (Assignment a : all.all()) {
             for (String v : a.tests().visible()) {
                 files.add(r.resolve(v));
