@@ -40,7 +40,7 @@ class CourseCheckTest {
     private Path course(String name) throws IOException {
         Path project = Path.of("").toAbsolutePath();
         Path root = dir.resolve(name);
-        for (String f : List.of("assignments", "scenes", "grader/tests", "src/test/java", "src/main/java")) {
+        for (String f : List.of("assignments", "scenes", "grader/tests", "src/test/java", "src/main/java", "src/tools/java")) {
             FileTrees.copy(project.resolve(f), root.resolve(f));
         }
         return root;

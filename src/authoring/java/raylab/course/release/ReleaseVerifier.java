@@ -94,6 +94,8 @@ public final class ReleaseVerifier {
     private final Options options;
     private final Assignments assignments;
     private final List<Path> libraries;
+    /** The libraries without the tools jar: what the lab's sources compile against. */
+    private final List<Path> labLibraries;
     private final Map<String, CompletableFuture<Path>> overlays = new ConcurrentHashMap<>();
     private Path mainClasses;
     private Path testClasses;
@@ -106,7 +108,14 @@ public final class ReleaseVerifier {
         this.work = work.toAbsolutePath().normalize();
         this.options = options;
         this.assignments = Assignments.load(this.root);
-        this.libraries = libraries();
+        // The libraries and the starter's tools jar, as the starter's pom.xml gives them to its tests.
+        List<Path> libs = new ArrayList<>(libraries());
+        Path tools = toolsJar(this.starter);
+        if (tools != null) {
+            libs.add(tools);
+        }
+        this.libraries = List.copyOf(libs);
+        this.labLibraries = tools == null ? this.libraries : libraries();
     }
 
     /** Verifies {@code starter} (written from {@code root}), using {@code work} for build output. */
@@ -456,12 +465,14 @@ public final class ReleaseVerifier {
         testClasses = work.resolve("starter-tests");
         JavaBuild.deleteTree(mainClasses);
         JavaBuild.deleteTree(testClasses);
+        // The lab alone, without the tools jar: the starter's sources use nothing of the tools.
         List<Path> mainSources = JavaBuild.sourcesUnder(starter.resolve("src/main/java"));
-        JavaBuild.Result m = JavaBuild.compile(mainSources, libraries, mainClasses);
+        JavaBuild.Result m = JavaBuild.compile(mainSources, labLibraries, mainClasses);
         out.add(compiled("the starter's src/main/java compiles", m, mainSources.size()));
         if (!m.success()) {
             return out;
         }
+        // The visible tests' helpers use the tools (raylab.course.Notes), as the starter's pom.xml gives them.
         List<Path> testSources = JavaBuild.sourcesUnder(starter.resolve("src/test/java"));
         JavaBuild.Result t = JavaBuild.compile(testSources, cp(mainClasses), testClasses);
         out.add(compiled("the starter's visible tests compile", t, testSources.size()));

@@ -58,7 +58,8 @@ class AddSceneTest {
             """;
 
     static Path copy(Path root, Path to) throws IOException {
-        for (String d : List.of("assignments", "scenes", "grader", "src/main/java", "src/main/resources", "src/test/java")) {
+        for (String d : List.of("assignments", "scenes", "grader", "src/main/java", "src/main/resources", "src/tools/java",
+                "src/test/java")) {
             FileTrees.copy(root.resolve(d), to.resolve(d));
         }
         return to;
