@@ -7,6 +7,8 @@ import java.util.List;
 import java.util.Optional;
 import java.util.Set;
 
+import raylab.course.SourceRoots;
+
 /**
  * The project's modules (docs/architecture.md): each is a source root of the one Maven build, and
  * may use only the modules listed as below it. The lab is the ray tracer the starter holds as
@@ -14,9 +16,9 @@ import java.util.Set;
  */
 enum Module {
     /** The ray tracer: math, ray, light, camera, material, shading, surface, scene, render, NotImplemented. */
-    LAB(List.of("src/main/java")),
+    LAB(List.of(SourceRoots.LAB)),
     /** What students run but never read: cli, check, the test JVM, the student-side RPC server, inspect, bench. */
-    TOOLS(List.of("src/tools/java")),
+    TOOLS(List.of(SourceRoots.TOOLS)),
     /** The packed mesh engine, its generated traversals included. */
     MESH_ENGINE(List.of("src/mesh-engine/java", "target/generated-sources/mesh-engine")),
     /** The trusted side: grading, isolation, the client side of the boundary, reports, platforms. */

@@ -21,9 +21,6 @@ public final class SourceRoots {
     public static final String LAB_RESOURCES = "src/main/resources";
     /** The tools: what students run but never read (cli, check, the test JVM, the student process, inspect). */
     public static final String TOOLS = "src/tools/java";
-    /** The instructor's modules: the mesh engine, the grader (the trusted side), authoring. */
-    public static final List<String> INSTRUCTOR = List.of("src/mesh-engine/java", "grader/src/main/java",
-            "src/authoring/java");
 
     private SourceRoots() {
     }
