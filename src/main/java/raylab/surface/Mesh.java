@@ -24,8 +24,9 @@ import raylab.ray.Ray;
  * its own {@code intersect} through the tree. A bug in a student's {@code Triangle.intersect}
  * therefore shows in every mesh. This is the only kernel the starter has.</li>
  * <li>the packed engine, {@code raylab.mesh.PackedTriangles}: instructor-only (the mesh engine
- * module, {@code src/mesh-engine}, which the starter does not have) with its own traversal and the reference
- * {@code Triangle.intersect} rewritten on the packed arrays, same hits, same t, bit for bit. It
+ * module, {@code src/mesh-engine}, which the starter does not have) with its own traversal and
+ * the reference {@code Triangle.intersect} rewritten on the packed arrays, same hits, same t, bit
+ * for bit. It
  * is used only where this build provides it ({@link PackedEngine}, a service) and the class
  * {@code Triangle} comes from the same code source (class folder or jar) as its provider and
  * {@code Mesh}: the instructor's own build. A student's

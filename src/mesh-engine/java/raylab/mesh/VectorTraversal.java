@@ -42,7 +42,8 @@ interface VectorTraversal {
             return "the JVM was started without --add-modules jdk.incubator.vector";
         }
         try {
-            return Class.forName(VectorTraversal.class.getPackageName() + ".PackedVector").getDeclaredConstructor().newInstance();
+            String name = VectorTraversal.class.getPackageName() + ".PackedVector";
+            return Class.forName(name).getDeclaredConstructor().newInstance();
         } catch (ClassNotFoundException | LinkageError e) {
             return "this build has no raylab.mesh.PackedVector (" + e + ")";
         } catch (NoSuchMethodException | InstantiationException | IllegalAccessException
