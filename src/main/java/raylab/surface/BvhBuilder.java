@@ -19,8 +19,10 @@ import java.util.concurrent.RecursiveAction;
  * <p>Large inputs ({@link #PARALLEL_MIN} primitives and more) build the two subtrees of every node
  * above that size in parallel, each into its own node array, and then append them in depth-first
  * order: the result is identical to the sequential build, node for node.
+ *
+ * <p>Public for {@link #up} only, which the packed mesh engine ({@code raylab.mesh}) rounds with.
  */
-final class BvhBuilder {
+public final class BvhBuilder {
     static final int BINS = 12;
     static final int MAX_LEAF = 4;
     /** Ints per node of the depth-first output: six float bounds, then two ints. */
@@ -352,7 +354,7 @@ final class BvhBuilder {
     }
 
     /** The smallest float ≥ d. */
-    static float up(double d) {
+    public static float up(double d) {
         float f = (float) d;
         return f < d ? Math.nextUp(f) : f;
     }

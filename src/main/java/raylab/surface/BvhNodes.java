@@ -20,41 +20,52 @@ import raylab.ray.Ray;
  * hits resolve as they always did). A pushed child carries its entry distance and is skipped when
  * popped if it lies beyond the closest hit found meanwhile. Stacks are per-thread arrays (one
  * frame per nested tree), so tracing a ray allocates nothing.
+ *
+ * <p>Public for the packed mesh engine ({@code raylab.mesh}, docs/mesh-engine.md), which traces a
+ * mesh's tree with its own traversal: the arrays are the mesh's, to be read, never written.
  */
-final class BvhNodes {
+public final class BvhNodes {
     /** Ints per inner node: two boxes of six floats, the left reference, the right one with the axis. */
-    static final int INNER = 14;
+    public static final int INNER = 14;
     /** Relative widening of a box's exit distance, so that rounding cannot cull a hit (pbrt). */
-    static final double ROUND_UP = 1 + 2 * raylab.math.Numerics.gamma(3);
+    public static final double ROUND_UP = 1 + 2 * raylab.math.Numerics.gamma(3);
 
-    final int[] inner;
-    final int[] leaf;
-    /** The root's reference and its box (six float bits). */
-    final int rootRef;
-    final int[] rootBox;
+    /** The inner nodes, {@link #INNER} ints each (layout above). */
+    public final int[] inner;
+    /** The leaves, two ints each: first primitive slot, count. */
+    public final int[] leaf;
+    /** The root's reference (r ≥ 0: inner node r; r &lt; 0: leaf ~r). */
+    public final int rootRef;
+    /** The root's box: six float bits (min x, y, z, max x, y, z). */
+    public final int[] rootBox;
     /** Nodes of the binary tree (inner + leaves), as the builder made them. */
-    final int count;
-    final int depth;
+    public final int count;
+    /** Depth of the tree (1 for a single leaf). */
+    public final int depth;
     /** Leaf slot → original primitive index. */
-    final int[] order;
+    public final int[] order;
 
     /**
      * Per-thread traversal stacks. A traversal may call the primitives' own intersect, which may
      * be another tree (a mesh in a scene's tree), so each traversal takes a frame above the
-     * current one and gives it back when it returns.
+     * current one and gives it back when it returns. The packed mesh engine, which calls nothing
+     * that traces, uses the arrays above {@link #top} without taking a frame.
      */
-    static final class Frames {
-        int[] refs = new int[256];
-        double[] entry = new double[256];
+    public static final class Frames {
+        /** Pending node references, one frame per nested tree. */
+        public int[] refs = new int[256];
+        /** The pending nodes' entry distances. */
+        public double[] entry = new double[256];
         /** Entry distances as float bits (the packed engine's float traversal). */
         int[] bits = new int[256];
         /** Pending children of the packed engine's 4-wide traversal: entry bits << 32 | reference. */
-        long[] pending = new long[256];
+        public long[] pending = new long[256];
         /** The ray of the packed engine's 4-wide traversal, for its leaf test (instructor-only). */
-        final double[] ray = new double[16];
+        public final double[] ray = new double[16];
         /** Four entry distances of the packed engine's Vector API traversal (instructor-only). */
-        final int[] lanes = new int[4];
-        int top;
+        public final int[] lanes = new int[4];
+        /** The first free entry of {@link #refs} and {@link #entry}: the frames below are taken. */
+        public int top;
     }
 
     private static final ThreadLocal<Frames> FRAMES = ThreadLocal.withInitial(Frames::new);
@@ -102,16 +113,17 @@ final class BvhNodes {
     }
 
     /** Number of inner nodes. */
-    int innerCount() {
+    public int innerCount() {
         return inner.length / INNER;
     }
 
-    static Frames frames() {
+    /** This thread's traversal stacks. */
+    public static Frames frames() {
         return FRAMES.get();
     }
 
     /** Makes room for {@code need} entries; the caller's arrays keep their frames if replaced. */
-    static void ensure(Frames f, int need) {
+    public static void ensure(Frames f, int need) {
         if (f.refs.length < need) {
             int cap = Math.max(need, 2 * f.refs.length);
             f.refs = Arrays.copyOf(f.refs, cap);
@@ -128,7 +140,7 @@ final class BvhNodes {
      * negative). Slabs; a 0·∞ NaN (origin on a slab plane, direction parallel to it) is ignored,
      * counting as inside.
      */
-    static double entry(int[] box, int k, double px, double py, double pz, double ix, double iy,
+    public static double entry(int[] box, int k, double px, double py, double pz, double ix, double iy,
             double iz, int nx, int ny, int nz, double t0, double t1) {
         return entry(box, k, px, py, pz, ix, iy, iz, ix * ROUND_UP, iy * ROUND_UP, iz * ROUND_UP, nx, ny, nz, t0, t1);
     }
@@ -138,7 +150,7 @@ final class BvhNodes {
      * on. (f − p)·ux rounds four times (1/d, the difference, the widening, the product), within
      * γ4 &lt; 2γ3 of the exact exit distance, so the widened exit still bounds it from above.
      */
-    static double entry(int[] box, int k, double px, double py, double pz, double ix, double iy,
+    public static double entry(int[] box, int k, double px, double py, double pz, double ix, double iy,
             double iz, double ux, double uy, double uz, int nx, int ny, int nz, double t0, double t1) {
         double a = (Float.intBitsToFloat(box[k + nx]) - px) * ix;
         double b = (Float.intBitsToFloat(box[k + 3 - nx]) - px) * ux;

@@ -23,9 +23,10 @@ import raylab.ray.Ray;
  * <li>the student kernel: {@link Triangle} objects made once per mesh, in leaf order, each asked
  * its own {@code intersect} through the tree. A bug in a student's {@code Triangle.intersect}
  * therefore shows in every mesh. This is the only kernel the starter has.</li>
- * <li>the packed engine, {@code PackedTriangles}: an instructor-only class (kept out of the
- * starter by {@code assignments/release.json}) with its own traversal and the reference
- * {@code Triangle.intersect} rewritten on the packed arrays, same hits, same t, bit for bit. It
+ * <li>the packed engine, {@code raylab.mesh.PackedTriangles}: instructor-only (the mesh engine
+ * module, {@code src/mesh-engine}, which the starter does not have) with its own traversal and
+ * the reference {@code Triangle.intersect} rewritten on the packed arrays, same hits, same t, bit
+ * for bit. It
  * is used only where this build provides it ({@link PackedEngine}, a service) and the class
  * {@code Triangle} comes from the same code source (class folder or jar) as its provider and
  * {@code Mesh}: the instructor's own build. A student's
@@ -37,9 +38,15 @@ import raylab.ray.Ray;
 public final class Mesh extends Surface {
     /**
      * The packed engine of one mesh: closest hit or any hit, with {@code IntersectionRecord}
-     * filled as {@link Triangle#intersect} fills it (an any hit names the blocker only).
+     * filled as {@link Triangle#intersect} fills it (an any hit names the blocker only). Made by
+     * this build's {@link PackedEngine}.
      */
-    interface Engine {
+    public interface Engine {
+        /**
+         * The closest hit of the ray below {@code rec.t} (or, with {@code anyHit}, any hit in the
+         * ray's range) written to {@code rec}, as {@link Triangle#intersect} writes it; whether
+         * there is one. Adds the triangle tests to {@code rec.tests}.
+         */
         boolean intersect(IntersectionRecord rec, Ray ray, boolean anyHit);
 
         /** Bytes of the engine's own arrays (beyond the mesh's vertices and tree). */
@@ -207,8 +214,8 @@ public final class Mesh extends Surface {
         return nx == 0 && ny == 0 && nz == 0;
     }
 
-    /** The packed engine, for tests in this package (null with the student kernel). */
-    Engine packedEngine() {
+    /** The packed engine that traces this mesh, or null with the student kernel (for the engine's tests). */
+    public Engine packedEngine() {
         return engine;
     }
 

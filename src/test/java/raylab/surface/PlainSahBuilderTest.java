@@ -1,6 +1,7 @@
 package raylab.surface;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import java.util.ArrayList;
 import java.util.Arrays;
@@ -9,6 +10,7 @@ import java.util.SplittableRandom;
 import java.util.stream.IntStream;
 import java.util.stream.Stream;
 
+import org.junit.jupiter.api.Test;
 import org.junit.jupiter.params.ParameterizedTest;
 import org.junit.jupiter.params.provider.MethodSource;
 
@@ -150,5 +152,27 @@ class PlainSahBuilderTest {
         double y = b[4] - b[1];
         double z = b[5] - b[2];
         return x * y + y * z + z * x;
+    }
+
+    @Test
+    void theParallelBuildMakesTheSequentialTreeNodeForNode() {
+        SplittableRandom r = new SplittableRandom(99);
+        int n = 3 * BvhBuilder.PARALLEL_MIN;
+        double[] box = new double[6 * n];
+        for (int i = 0; i < n; i++) {
+            for (int k = 0; k < 3; k++) {
+                double c = r.nextDouble(-100, 100) * (k == 1 ? 0.1 : 1);
+                double h = r.nextDouble(0, 0.5);
+                box[6 * i + k] = c - h;
+                box[6 * i + 3 + k] = c + h;
+            }
+        }
+        BvhNodes one = BvhBuilder.build(box, n, 1);
+        BvhNodes four = BvhBuilder.build(box, n, 4);
+        assertEquals(one.count, four.count, "node count");
+        assertEquals(one.depth, four.depth, "depth");
+        assertTrue(java.util.Arrays.equals(one.order, four.order), "primitive order");
+        assertTrue(java.util.Arrays.equals(one.inner, four.inner), "inner nodes");
+        assertTrue(java.util.Arrays.equals(one.leaf, four.leaf), "leaves");
     }
 }

@@ -175,12 +175,12 @@ public final class Release {
     }
 
     /**
-     * The starter's pom.xml: the instructor's without its {@code course} profile (the other modules'
-     * source roots) and its {@code mutation} profile (which names every hidden test class and the
+     * The starter's pom.xml: the instructor's without its {@code course} and {@code mesh-engine}
+     * profiles (the other modules' source roots) and its {@code mutation} profile (which names every hidden test class and the
      * grader's folder), each with the comment before it, and with the tools jar's version.
      */
     static String starterPom(String pom, String toolsVersion) {
-        String out = withoutProfile(withoutProfile(pom, "course"), "mutation");
+        String out = withoutProfile(withoutProfile(withoutProfile(pom, "course"), "mesh-engine"), "mutation");
         return out.replaceFirst("<raylab\\.tools\\.version>[^<]*</raylab\\.tools\\.version>",
                 "<raylab.tools.version>" + toolsVersion + "</raylab.tools.version>");
     }

@@ -1,4 +1,4 @@
-package raylab.surface;
+package raylab.mesh;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
@@ -21,6 +21,12 @@ import raylab.math.Color;
 import raylab.math.Vec3;
 import raylab.ray.IntersectionRecord;
 import raylab.ray.Ray;
+import raylab.surface.Bvh;
+import raylab.surface.Group;
+import raylab.surface.Mesh;
+import raylab.surface.Sphere;
+import raylab.surface.Surface;
+import raylab.surface.Triangle;
 
 /**
  * The packed mesh engine against an independent oracle: a plain loop over the same triangles as
@@ -510,27 +516,5 @@ class MeshEngineTest {
         }
         long missBytes = mx.getThreadAllocatedBytes(id) - before;
         assertTrue(missBytes < 10000, missBytes + " bytes allocated by 10,000 missing rays");
-    }
-
-    @Test
-    void theParallelBuildMakesTheSequentialTreeNodeForNode() {
-        SplittableRandom r = new SplittableRandom(99);
-        int n = 3 * BvhBuilder.PARALLEL_MIN;
-        double[] box = new double[6 * n];
-        for (int i = 0; i < n; i++) {
-            for (int k = 0; k < 3; k++) {
-                double c = r.nextDouble(-100, 100) * (k == 1 ? 0.1 : 1);
-                double h = r.nextDouble(0, 0.5);
-                box[6 * i + k] = c - h;
-                box[6 * i + 3 + k] = c + h;
-            }
-        }
-        BvhNodes one = BvhBuilder.build(box, n, 1);
-        BvhNodes four = BvhBuilder.build(box, n, 4);
-        assertEquals(one.count, four.count, "node count");
-        assertEquals(one.depth, four.depth, "depth");
-        assertTrue(java.util.Arrays.equals(one.order, four.order), "primitive order");
-        assertTrue(java.util.Arrays.equals(one.inner, four.inner), "inner nodes");
-        assertTrue(java.util.Arrays.equals(one.leaf, four.leaf), "leaves");
     }
 }

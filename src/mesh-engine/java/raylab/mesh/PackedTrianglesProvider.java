@@ -1,6 +1,9 @@
-package raylab.surface;
+package raylab.mesh;
 
 import raylab.material.Material;
+import raylab.surface.BvhNodes;
+import raylab.surface.Mesh;
+import raylab.surface.PackedEngine;
 
 /**
  * Provides {@link PackedTriangles} as this build's {@link PackedEngine} (listed in

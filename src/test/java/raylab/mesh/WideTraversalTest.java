@@ -1,4 +1,4 @@
-package raylab.surface;
+package raylab.mesh;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertTrue;
@@ -15,6 +15,9 @@ import org.junit.jupiter.params.provider.ValueSource;
 import raylab.math.BoundingBox;
 import raylab.math.Vec3;
 import raylab.ray.Ray;
+import raylab.surface.BvhNodes;
+import raylab.surface.Mesh;
+import raylab.surface.Triangle;
 
 /**
  * The packed engine's 4-wide traversal (PackedWide, PackedOctants): the collapsed tree holds every

@@ -1,4 +1,4 @@
-package raylab.surface;
+package raylab.mesh;
 
 import java.lang.reflect.InvocationTargetException;
 
@@ -42,12 +42,13 @@ interface VectorTraversal {
             return "the JVM was started without --add-modules jdk.incubator.vector";
         }
         try {
-            return Class.forName("raylab.surface.PackedVector").getDeclaredConstructor().newInstance();
+            String name = VectorTraversal.class.getPackageName() + ".PackedVector";
+            return Class.forName(name).getDeclaredConstructor().newInstance();
         } catch (ClassNotFoundException | LinkageError e) {
-            return "this build has no raylab.surface.PackedVector (" + e + ")";
+            return "this build has no raylab.mesh.PackedVector (" + e + ")";
         } catch (NoSuchMethodException | InstantiationException | IllegalAccessException
                 | InvocationTargetException e) {
-            return "raylab.surface.PackedVector cannot be made (" + e + ")";
+            return "raylab.mesh.PackedVector cannot be made (" + e + ")";
         }
     }
 

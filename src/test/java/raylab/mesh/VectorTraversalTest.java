@@ -1,4 +1,4 @@
-package raylab.surface;
+package raylab.mesh;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertInstanceOf;
@@ -18,6 +18,8 @@ import raylab.math.BoundingBox;
 import raylab.math.Vec3;
 import raylab.ray.IntersectionRecord;
 import raylab.ray.Ray;
+import raylab.surface.Mesh;
+import raylab.surface.Triangle;
 
 /**
  * The Vector API traversal ({@code PackedVector}) against the scalar one ({@link PackedOctants})
@@ -42,7 +44,7 @@ class VectorTraversalTest {
     void loadSaysWhyWhenThereIsNoVectorTraversal() {
         Object v = VectorTraversal.load();
         if (VectorTraversal.moduleResolved()) {
-            assertEquals("raylab.surface.PackedVector", v.getClass().getName(), "with the module: " + v);
+            assertEquals("raylab.mesh.PackedVector", v.getClass().getName(), "with the module: " + v);
         } else {
             assertEquals("the JVM was started without --add-modules jdk.incubator.vector", v);
         }

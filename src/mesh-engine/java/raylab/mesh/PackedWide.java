@@ -1,7 +1,10 @@
-package raylab.surface;
+package raylab.mesh;
+
+import raylab.surface.BvhBuilder;
+import raylab.surface.BvhNodes;
 
 /**
- * The packed engine's 4-wide tree (instructor-only, kept out of the starter with
+ * The packed engine's 4-wide tree (instructor-only, as
  * {@code PackedTriangles}): the binary SAH tree of {@link BvhNodes} collapsed so that each node
  * holds up to four children, its two children's children where those are inner nodes, else the
  * child itself. Traversed by {@link PackedOctants}, one copy per ray octant.
@@ -194,8 +197,8 @@ final class PackedWide {
 
     /**
      * Slots of the per-thread ray array of the leaf test ({@link PackedOctants}): origin, tMin, tMax,
-     * the closest hit so far, the shear and the origin in ray space (as {@link Triangle#intersect}), the
-     * count of triangle tests.
+     * the closest hit so far, the shear and the origin in ray space (as
+     * {@link raylab.surface.Triangle#intersect}), the count of triangle tests.
      */
     static final int PX = 0, PY = 1, PZ = 2, TMIN = 3, TMAX = 4, BEST = 5, SHX = 6, SHY = 7, SHZ = 8, PKX = 9,
             PKY = 10, PKZ = 11, TESTS = 12, RAY = 13;

@@ -1,13 +1,16 @@
-package raylab.surface;
+package raylab.mesh;
 
 import raylab.material.Material;
 import raylab.math.Vec3;
 import raylab.ray.IntersectionRecord;
 import raylab.ray.Ray;
+import raylab.surface.BvhNodes;
+import raylab.surface.Mesh;
+import raylab.surface.Triangle;
 
 /**
- * The packed mesh engine (instructor-only: {@code assignments/release.json} keeps it out of the
- * starter, because its kernel is the triangle milestone's solution). {@link Mesh} uses it only
+ * The packed mesh engine (instructor-only: the mesh engine module, which the starter does not
+ * have, because its kernel is the triangle milestone's solution). {@link Mesh} uses it only
  * when this class, {@code Mesh} and {@code Triangle} come from one code source, so a student's
  * {@code Triangle} is never replaced by it (docs/mesh-engine.md).
  *
