@@ -4,6 +4,7 @@ import java.awt.image.BufferedImage;
 import java.io.IOException;
 import java.nio.file.Files;
 import java.nio.file.Path;
+import java.nio.file.StandardCopyOption;
 import java.security.MessageDigest;
 import java.security.NoSuchAlgorithmException;
 import java.util.ArrayList;
@@ -50,7 +51,11 @@ final class ReferenceTraces {
                 } catch (SceneException e) {
                     throw new IOException(scene + ": " + e.getMessage(), e);
                 }
-                TraceFile.write(new Tracer(s), cached, TraceFile.strideFor(s.width, s.height));
+                // Written under a name of this process's own, then moved into place: two builds (two
+                // test JVMs, say) that make the same trace at once never write one file together.
+                Path mine = cached.resolveSibling(cached.getFileName() + "." + ProcessHandle.current().pid() + "-" + java.util.UUID.randomUUID());
+                TraceFile.write(new Tracer(s), mine, TraceFile.strideFor(s.width, s.height));
+                Files.move(mine, cached, StandardCopyOption.ATOMIC_MOVE, StandardCopyOption.REPLACE_EXISTING);
             }
             files.put(traceOf(scene), Files.readAllBytes(cached));
         }
