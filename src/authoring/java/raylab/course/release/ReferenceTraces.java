@@ -53,7 +53,8 @@ final class ReferenceTraces {
                 }
                 // Written under a name of this process's own, then moved into place: two builds (two
                 // test JVMs, say) that make the same trace at once never write one file together.
-                Path mine = cached.resolveSibling(cached.getFileName() + "." + ProcessHandle.current().pid() + "-" + java.util.UUID.randomUUID());
+                Path mine = cached.resolveSibling(cached.getFileName() + "." + ProcessHandle.current().pid() + "-"
+                        + java.util.UUID.randomUUID());
                 TraceFile.write(new Tracer(s), mine, TraceFile.strideFor(s.width, s.height));
                 Files.move(mine, cached, StandardCopyOption.ATOMIC_MOVE, StandardCopyOption.REPLACE_EXISTING);
             }
