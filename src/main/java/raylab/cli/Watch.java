@@ -118,7 +118,7 @@ final class Watch {
             return true;
         }
         try {
-            Incremental.Result r = Incremental.of(home).update(JavaBuild.ownClassPath());
+            JavaBuild.Result r = Incremental.of(home).update(JavaBuild.ownClassPath());
             if (r == null) {
                 out.println("raylab: a framework file or pom.xml changed: stop (Ctrl-C) and run ./raylab again for"
                         + " the full build");
