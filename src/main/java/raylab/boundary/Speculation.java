@@ -50,6 +50,9 @@ import raylab.surface.Surface;
  *
  * <p>The milestone's reference runs here only to trace a band's pixels once for the reference
  * image ({@link #beginReference}); those traces note nothing and send nothing.
+ *
+ * <p>One algorithm kept whole on purpose: the rounds, the guesses and the rule above are correct only
+ * together, and a reviewer checks the rule against every line at once.
  */
 public final class Speculation {
     /** Rounds per band before the remaining pixels are traced one call at a time. */
