@@ -27,6 +27,8 @@ import raylab.surface.Triangle;
  * origin, a sphere, a light above; it is rotated, scaled by 10⁻⁴ to 10⁶, moved up to 10⁷ away, and
  * in one setting joined by one small sphere 10¹² away. Acne: points that see the light judged
  * shadowed; leaks: points under the leaf judged lit.
+ *
+ * <p>One experiment: its scene, its settings and its tally read together as the study's figure.
  */
 final class ShadowExperiment implements Experiment {
     static final String[] METHODS = {"no offset", "fixed ε = 10⁻⁹", "fixed ε = 10⁻⁶", "fixed ε = 10⁻³",

@@ -23,6 +23,8 @@ import com.fasterxml.jackson.core.StreamReadFeature;
  * so that the scene loader can say exactly where a problem is. Jackson's own tree keeps no
  * locations, so this reads Jackson's token stream. Syntax errors become one-line
  * {@link SceneException}s in the loader's format, never Jackson's multi-line messages.
+ *
+ * <p>One parser for one format: JSON with the locations of its nodes.
  */
 final class JsonTree {
 

@@ -29,6 +29,8 @@ import raylab.math.Vec3;
  * strings per line): vertices go to one {@code double[]}, faces to one {@code int[]} of vertex
  * indices. Only regular files are read (not FIFOs or devices, which could block or never end),
  * and at most {@link #maxBytes()} bytes.
+ *
+ * <p>One parser for one format (Wavefront OBJ's triangles).
  */
 public final class ObjLoader {
     private ObjLoader() {

@@ -44,6 +44,9 @@ import raylab.scene.JsonTree.Node;
  * </pre>
  * or {@code file: message} for problems without a place in the JSON (empty, unreadable or binary
  * files).
+ *
+ * <p>One parser for one format: its sections follow docs/scene-format.md in order, and every one
+ * reports through the same one-line error.
  */
 public final class SceneLoader {
     /** Largest image width and height. */

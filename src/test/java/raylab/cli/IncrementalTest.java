@@ -51,7 +51,7 @@ class IncrementalTest {
         Files.setLastModifiedTime(root.resolve(SPHERE), FileTime.fromMillis(2_000_000));
         assertEquals(List.of(root.resolve(SPHERE)), inc.plan().compile(), "to compile");
         assertEquals(List.of(), inc.plan().needFullBuild(), "full build needed for");
-        Incremental.Result r = inc.update(JavaBuild.ownClassPath());
+        JavaBuild.Result r = inc.update(JavaBuild.ownClassPath());
         assertTrue(r.success(), "compile errors: " + r.errors());
         assertTrue(Files.isRegularFile(root.resolve("target/incremental/raylab/surface/Sphere.class")));
         assertTrue(inc.plan().upToDate(), "compiled once, then up to date: " + inc.plan());
@@ -106,9 +106,9 @@ class IncrementalTest {
 
     @Test
     void moreErrorsThanShownAreCounted() {
-        List<CompileErrors.Error> errors = List.of(new CompileErrors.Error(null, 1, 1, "a"),
-                new CompileErrors.Error(null, 2, 1, "b"), new CompileErrors.Error(null, 3, 1, "c"),
-                new CompileErrors.Error(null, 4, 1, "d"), new CompileErrors.Error(null, 5, 1, "e"));
+        List<JavaBuild.Problem> errors = List.of(new JavaBuild.Problem(null, 1, 1, "a"),
+                new JavaBuild.Problem(null, 2, 1, "b"), new JavaBuild.Problem(null, 3, 1, "c"),
+                new JavaBuild.Problem(null, 4, 1, "d"), new JavaBuild.Problem(null, 5, 1, "e"));
         List<String> lines = CompileErrors.format(errors, Path.of(""), 3);
         assertEquals(List.of("error: a", "error: b", "error: c",
                 "... and 2 more errors (fix the first one first: one mistake often causes several)"), lines);

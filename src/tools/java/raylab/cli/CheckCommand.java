@@ -45,11 +45,10 @@ public final class CheckCommand implements Callable<Integer> {
 
     @Override
     public Integer call() throws Exception {
-        PrintWriter out = spec.commandLine().getOut();
         if (watch) {
-            return Watch.run(out, Watch.without(spec.commandLine().getParseResult().originalArgs().toArray(String[]::new)),
-                    List.of());
+            return Watch.again(spec, List.of());
         }
+        PrintWriter out = spec.commandLine().getOut();
         Path root = Path.of("").toAbsolutePath();
         if (threads < 1) {
             throw UserError.badInput("--threads must be at least 1, got " + threads);

@@ -6,10 +6,8 @@ import java.nio.file.Files;
 import java.nio.file.Path;
 import java.util.ArrayList;
 import java.util.List;
-import java.util.Locale;
 
-import javax.tools.Diagnostic;
-import javax.tools.JavaFileObject;
+import raylab.course.JavaBuild;
 
 /**
  * javac's errors as a student reads them on the terminal: the first few as
@@ -21,34 +19,18 @@ public final class CompileErrors {
     /** How many errors are shown in full. */
     public static final int SHOWN = 3;
 
-    /** One compile error: file (null when javac names none), 1-based line and column, javac's message. */
-    public record Error(Path file, long line, long column, String message) {
-    }
-
     private CompileErrors() {
-    }
-
-    /** The errors among javac's diagnostics, in javac's order. */
-    public static List<Error> of(List<Diagnostic<? extends JavaFileObject>> diagnostics) {
-        List<Error> out = new ArrayList<>();
-        for (Diagnostic<? extends JavaFileObject> d : diagnostics) {
-            if (d.getKind() == Diagnostic.Kind.ERROR) {
-                Path file = d.getSource() == null ? null : Path.of(d.getSource().toUri());
-                out.add(new Error(file, d.getLineNumber(), d.getColumnNumber(), d.getMessage(Locale.ROOT)));
-            }
-        }
-        return out;
     }
 
     /**
      * The errors as terminal lines: the first {@code shown} in full (file relative to
      * {@code root}), then "... and N more errors".
      */
-    public static List<String> format(List<Error> errors, Path root, int shown) {
+    public static List<String> format(List<JavaBuild.Problem> errors, Path root, int shown) {
         List<String> lines = new ArrayList<>();
         for (int i = 0; i < Math.min(shown, errors.size()); i++) {
-            Error e = errors.get(i);
-            String[] message = e.message().strip().split("\n");
+            JavaBuild.Problem e = errors.get(i);
+            String[] message = e.text().strip().split("\n");
             String where = e.file() == null ? "" : relative(root, e.file()) + ":" + (e.line() > 0 ? e.line() + ":" : "")
                     + (e.column() > 0 ? e.column() + ":" : "") + " ";
             lines.add(where + "error: " + message[0].strip());
@@ -72,7 +54,7 @@ public final class CompileErrors {
     }
 
     /** The same as one text block, ending in a line break. */
-    public static String text(List<Error> errors, Path root) {
+    public static String text(List<JavaBuild.Problem> errors, Path root) {
         StringBuilder b = new StringBuilder();
         format(errors, root, SHOWN).forEach(l -> b.append(l).append('\n'));
         return b.toString();

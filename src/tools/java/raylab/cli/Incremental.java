@@ -40,10 +40,6 @@ public final class Incremental {
         }
     }
 
-    /** The outcome of compiling: success, or javac's errors. */
-    public record Result(boolean success, List<CompileErrors.Error> errors) {
-    }
-
     private final Path root;
     private final Path built;
     private final Path overlay;
@@ -122,12 +118,12 @@ public final class Incremental {
     }
 
     /** Compiles {@code sources} against the overlay and {@code classPath} into the overlay, and stamps them. */
-    public Result compile(List<Path> sources, List<Path> classPath) throws IOException {
+    public JavaBuild.Result compile(List<Path> sources, List<Path> classPath) throws IOException {
         List<Path> cp = new ArrayList<>();
         cp.add(overlay);
         classPath.stream().filter(p -> !p.toAbsolutePath().normalize().equals(overlay.toAbsolutePath().normalize()))
                 .forEach(cp::add);
-        List<CompileErrors.Error> errors = CompileErrors.of(JavaBuild.javac(sources, cp, overlay,
+        List<JavaBuild.Problem> errors = JavaBuild.Problem.of(JavaBuild.javac(sources, cp, overlay,
                 List.of("-implicit:none", "-g")));
         if (errors.isEmpty()) {
             Properties stamps = readStamps();
@@ -135,18 +131,18 @@ public final class Incremental {
                 stamps.setProperty(key(p), stamp(p));
             }
             writeStamps(stamps);
-            return new Result(true, List.of());
+            return new JavaBuild.Result(true, List.of());
         }
-        return new Result(false, errors);
+        return new JavaBuild.Result(false, errors);
     }
 
     /** Plans and, when only student files changed, compiles them: null when a full build is needed. */
-    public Result update(List<Path> classPath) throws IOException {
+    public JavaBuild.Result update(List<Path> classPath) throws IOException {
         Plan plan = plan();
         if (!plan.needFullBuild().isEmpty()) {
             return null;
         }
-        return plan.compile().isEmpty() ? new Result(true, List.of()) : compile(plan.compile(), classPath);
+        return plan.compile().isEmpty() ? new JavaBuild.Result(true, List.of()) : compile(plan.compile(), classPath);
     }
 
     private String key(Path p) {

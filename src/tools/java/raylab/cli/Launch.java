@@ -37,7 +37,7 @@ public final class Launch {
             return Main.OK; // not run from a built project (a test, the IDE): nothing to bring up to date
         }
         try {
-            Incremental.Result r = inc.update(JavaBuild.ownClassPath());
+            JavaBuild.Result r = inc.update(JavaBuild.ownClassPath());
             if (r == null) {
                 return Incremental.FULL_BUILD;
             }

@@ -82,11 +82,10 @@ public final class RenderCommand implements Callable<Integer> {
 
     @Override
     public Integer call() throws Exception {
-        PrintWriter out = spec.commandLine().getOut();
         if (watch) {
-            return Watch.run(out, Watch.without(spec.commandLine().getParseResult().originalArgs().toArray(String[]::new)),
-                    List.of(scenePath.toAbsolutePath()));
+            return Watch.again(spec, List.of(scenePath.toAbsolutePath()));
         }
+        PrintWriter out = spec.commandLine().getOut();
         if (threads < 1) {
             throw UserError.badInput("--threads must be at least 1, got " + threads);
         }

@@ -27,23 +27,23 @@ final class Watch {
     private Watch() {
     }
 
-    /**
-     * Runs {@code raylab ARGS} (the command line without --watch) now and after every change of
-     * the student files or {@code extra}; returns only when interrupted.
-     */
-    static int run(PrintWriter out, List<String> args, List<Path> extra) throws IOException {
-        return run(out, args, extra, false);
-    }
-
     /** Runs the command line of {@code spec} without --watch, as {@link #run(PrintWriter, List, List, boolean)}. */
     static int again(picocli.CommandLine.Model.CommandSpec spec, boolean restart) throws IOException {
         return run(spec.commandLine().getOut(), without(spec.commandLine().getParseResult().originalArgs()
                 .toArray(String[]::new)), List.of(), restart);
     }
 
+    /** Runs the command line of {@code spec} without --watch, again after every save of a student file or {@code extra}. */
+    static int again(picocli.CommandLine.Model.CommandSpec spec, List<Path> extra) throws IOException {
+        return run(spec.commandLine().getOut(), without(spec.commandLine().getParseResult().originalArgs()
+                .toArray(String[]::new)), extra, false);
+    }
+
     /**
-     * As {@link #run(PrintWriter, List, List)}; with {@code restart} the command (a server such as
-     * {@code inspect}, which runs until stopped) is stopped and started again at every save.
+     * Runs {@code raylab ARGS} (the command line without --watch) now and after every change of
+     * the student files or {@code extra}; returns only when interrupted. With {@code restart} the
+     * command (a server such as {@code inspect}, which runs until stopped) is stopped and started
+     * again at every save.
      */
     static int run(PrintWriter out, List<String> args, List<Path> extra, boolean restart) throws IOException {
         Path home = Launch.home();
@@ -118,7 +118,7 @@ final class Watch {
             return true;
         }
         try {
-            Incremental.Result r = Incremental.of(home).update(JavaBuild.ownClassPath());
+            JavaBuild.Result r = Incremental.of(home).update(JavaBuild.ownClassPath());
             if (r == null) {
                 out.println("raylab: a framework file or pom.xml changed: stop (Ctrl-C) and run ./raylab again for"
                         + " the full build");

@@ -175,6 +175,30 @@ public final class GradingPlan {
      */
     public static List<CaseInfo> cases(Path root, Assignment a) throws IOException {
         List<CaseInfo> out = new ArrayList<>();
+        for (CaseFile f : caseFiles(root, a)) {
+            for (JsonNode c : f.cases()) {
+                String name = c.path("name").asText("?");
+                out.add(new CaseInfo(name, c.path("points").asDouble(1),
+                        c.path("visibility").asText(a.tests().hiddenVisibility()), caseMethod(out.size() + 1, name),
+                        a.folder() + "/" + f.rel(), c.path("hint").asText(""), c));
+            }
+        }
+        return out;
+    }
+
+    /**
+     * One case file of a milestone, read.
+     *
+     * @param file  the file
+     * @param rel   its path as assignment.json names it
+     * @param cases its cases (the file's array, or the one object it holds), not yet checked
+     */
+    public record CaseFile(Path file, String rel, List<JsonNode> cases) {
+    }
+
+    /** A milestone's case files in order; a missing file or one that is not JSON is an IOException naming it. */
+    public static List<CaseFile> caseFiles(Path root, Assignment a) throws IOException {
+        List<CaseFile> out = new ArrayList<>();
         Path folder = root.resolve(a.folder() == null ? Path.of("assignments") : a.folder());
         for (String rel : a.cases()) {
             Path f = folder.resolve(rel);
@@ -187,12 +211,13 @@ public final class GradingPlan {
             } catch (IOException e) {
                 throw new IOException(f + ": not valid JSON: " + String.valueOf(e.getMessage()).split("\n")[0]);
             }
-            for (JsonNode c : n.isArray() ? n : List.of(n)) {
-                String name = c.path("name").asText("?");
-                out.add(new CaseInfo(name, c.path("points").asDouble(1),
-                        c.path("visibility").asText(a.tests().hiddenVisibility()), caseMethod(out.size() + 1, name),
-                        a.folder() + "/" + rel, c.path("hint").asText(""), c));
+            List<JsonNode> cases = new ArrayList<>();
+            if (n.isArray()) {
+                n.forEach(cases::add);
+            } else {
+                cases.add(n);
             }
+            out.add(new CaseFile(f, rel, cases));
         }
         return out;
     }
@@ -221,7 +246,8 @@ public final class GradingPlan {
         return b.append("}\n").toString();
     }
 
-    private static String javaString(String s) {
+    /** {@code s} as the body of a Java string literal (escapes for quotes, backslashes and non-ASCII). */
+    public static String javaString(String s) {
         StringBuilder b = new StringBuilder();
         for (char ch : s.toCharArray()) {
             switch (ch) {

@@ -27,19 +27,54 @@ import javax.tools.ToolProvider;
  * and work folders they fill ({@link #deleteTree}); for release checks, {@code check} and grading.
  */
 public final class JavaBuild {
-    /** A compile error: the file, its line, and javac's message. */
-    public record Problem(Path file, long line, String message) {
+    /**
+     * A compile error, as every raylab tool reads javac's: the file (null when javac names none),
+     * its 1-based line and column (0: unknown), javac's message's first line, and its whole text
+     * (the terminal's feedback shows all of it, {@code raylab.cli.CompileErrors}).
+     */
+    public record Problem(Path file, long line, long column, String message, String text) {
+        /** From javac's whole {@code text}: the message is its first line. */
+        public Problem(Path file, long line, long column, String text) {
+            this(file, line, column, text.split("\n")[0], text);
+        }
+
+        /** The errors among javac's diagnostics, in javac's order. */
+        public static List<Problem> of(List<Diagnostic<? extends JavaFileObject>> diagnostics) {
+            List<Problem> out = new ArrayList<>();
+            for (Diagnostic<? extends JavaFileObject> d : diagnostics) {
+                if (d.getKind() == Diagnostic.Kind.ERROR) {
+                    Path file = d.getSource() == null ? null : Path.of(d.getSource().toUri());
+                    out.add(new Problem(file, d.getLineNumber(), d.getColumnNumber(), d.getMessage(Locale.ROOT)));
+                }
+            }
+            return out;
+        }
+
         @Override
         public String toString() {
             return (file == null ? "" : file + ":" + line + ": ") + message;
         }
     }
 
-    /** The outcome: success, or the errors. */
+    /** The outcome of a compile: success, or javac's errors (every raylab compile, incremental or not). */
     public record Result(boolean success, List<Problem> errors) {
     }
 
     private JavaBuild() {
+    }
+
+    /**
+     * Ends a child JVM and every process it started (forcibly), and waits up to 5 s for it to be
+     * gone, so that what it left can be read.
+     */
+    public static void stop(Process p) {
+        p.descendants().forEach(ProcessHandle::destroyForcibly);
+        p.destroyForcibly();
+        try {
+            p.waitFor(5, java.util.concurrent.TimeUnit.SECONDS);
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+        }
     }
 
     /** The class path this JVM runs with, as paths. */
@@ -63,13 +98,7 @@ public final class JavaBuild {
             Files.createDirectories(outDir);
             return new Result(true, List.of());
         }
-        List<Problem> errors = new ArrayList<>();
-        for (Diagnostic<? extends JavaFileObject> d : javac(sources, classPath, outDir, List.of("-implicit:none"))) {
-            if (d.getKind() == Diagnostic.Kind.ERROR) {
-                Path file = d.getSource() == null ? null : Path.of(d.getSource().toUri());
-                errors.add(new Problem(file, d.getLineNumber(), d.getMessage(Locale.ROOT).split("\n")[0]));
-            }
-        }
+        List<Problem> errors = Problem.of(javac(sources, classPath, outDir, List.of("-implicit:none")));
         return new Result(errors.isEmpty(), errors);
     }
 

@@ -19,6 +19,9 @@ import java.util.regex.Pattern;
  * visible tests of the chosen milestones against the running raylab, runs them in a child JVM,
  * renders each milestone's scenes in a child JVM and compares them with their references, and
  * says for each milestone what to look at next.
+ *
+ * <p>One command's pipeline (compile, tests, renders, the next step), the student's side of what the
+ * grader does in separate classes, kept whole so that the starter ships it as one file.
  */
 public final class MilestoneCheck {
     /** Folder of the assertion helpers the visible tests share. */

@@ -20,18 +20,13 @@ public final class PackageScanner {
         }
         while (i < n) {
             char c = s.charAt(i);
-            if (Character.isWhitespace(c) || c == '\u001A') {
+            int after = afterComment(s, i);
+            if (after < 0) {
+                return "";
+            } else if (Character.isWhitespace(c) || c == '\u001A') {
                 i++;
-            } else if (c == '/' && i + 1 < n && s.charAt(i + 1) == '/') {
-                while (i < n && s.charAt(i) != '\n' && s.charAt(i) != '\r') {
-                    i++;
-                }
-            } else if (c == '/' && i + 1 < n && s.charAt(i + 1) == '*') {
-                int end = s.indexOf("*/", i + 2);
-                if (end < 0) {
-                    return "";
-                }
-                i = end + 2;
+            } else if (after > i) {
+                i = after;
             } else {
                 break;
             }
@@ -44,18 +39,13 @@ public final class PackageScanner {
         boolean needIdentifier = true;
         while (i < n) {
             char c = s.charAt(i);
-            if (Character.isWhitespace(c)) {
+            int after = afterComment(s, i);
+            if (after < 0) {
+                return "";
+            } else if (Character.isWhitespace(c)) {
                 i++;
-            } else if (c == '/' && i + 1 < n && s.charAt(i + 1) == '/') {
-                while (i < n && s.charAt(i) != '\n') {
-                    i++;
-                }
-            } else if (c == '/' && i + 1 < n && s.charAt(i + 1) == '*') {
-                int end = s.indexOf("*/", i + 2);
-                if (end < 0) {
-                    return "";
-                }
-                i = end + 2;
+            } else if (after > i) {
+                i = after;
             } else if (needIdentifier && Character.isJavaIdentifierStart(c)) {
                 while (i < n && Character.isJavaIdentifierPart(s.charAt(i))) {
                     name.append(s.charAt(i++));
@@ -72,6 +62,29 @@ public final class PackageScanner {
             }
         }
         return "";
+    }
+
+    /**
+     * Where the comment that starts at {@code i} ends: at its line's end ({@code //}) or after its
+     * {@code *}{@code /}; {@code i} when no comment starts there; −1 when a block comment never ends.
+     */
+    private static int afterComment(String s, int i) {
+        int n = s.length();
+        if (s.charAt(i) != '/' || i + 1 >= n) {
+            return i;
+        }
+        if (s.charAt(i + 1) == '/') {
+            int j = i;
+            while (j < n && s.charAt(j) != '\n' && s.charAt(j) != '\r') {
+                j++;
+            }
+            return j;
+        }
+        if (s.charAt(i + 1) == '*') {
+            int end = s.indexOf("*/", i + 2);
+            return end < 0 ? -1 : end + 2;
+        }
+        return i;
     }
 
     /** Translates Unicode escapes ({@code \}{@code uXXXX}, any number of u's) as the compiler does. */

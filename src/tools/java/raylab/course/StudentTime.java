@@ -50,9 +50,9 @@ final class StudentTime {
         return null;
     }
 
-    /** The message of a guard that fired on time that was not the student's: the grading failed. */
+    /** The cause of a guard that fired on time that was not the student's: the grading failed. */
     String notTheStudents(long wallMillis) {
-        return TestResult.GRADING_FAILED + "the test ran " + wallMillis / 1000 + " s of wall time while the"
+        return "the test ran " + wallMillis / 1000 + " s of wall time while the"
                 + " student's code used less than its " + limitSeconds + " s: the machine or the grader was too slow"
                 + " (not the student's code)";
     }

@@ -29,6 +29,9 @@ import com.fasterxml.jackson.databind.ObjectMapper;
  * Runs JUnit tests in a separate JVM ({@link TestMain}) with a memory cap and time limits, and
  * collects a result for every test it was asked about: what the child did not report as passed
  * is not passed (fail closed).
+ *
+ * <p>One job: the parent side of the test JVM's authenticated protocol, from its start to a
+ * fail-closed result for every expected test.
  */
 public final class TestLauncher {
     /** Limits of one child JVM. */
@@ -148,7 +151,7 @@ public final class TestLauncher {
      * <p>There every limit of the student's is in the student's own time (each call's, each
      * test's: {@link StudentTime}; the renders'), so the JVM's wall clock is only a guard, at
      * {@link #GUARD_FACTOR} × {@code limits.wallClock()}: when it fires, the tests not reported
-     * fail as a grading failure ({@link TestResult#GRADING_FAILED}), not as the student's.
+     * fail as a grading failure ({@link TestResult#gradingFailed()}), not as the student's.
      */
     public static Run runTrusted(List<Path> classPath, Path testClasses, List<String> classes, Limits limits,
             Path workDir, List<TestResult> expected, List<String> jvmOptions) throws IOException {
@@ -266,7 +269,7 @@ public final class TestLauncher {
                 exited = false;
             }
             if (!exited) {
-                kill(child);
+                JavaBuild.stop(child);
                 problem = "stopped after " + limits.wallClock().toSeconds() + " s (time limit for the whole run)";
             }
             try {
@@ -274,7 +277,7 @@ public final class TestLauncher {
             } catch (InterruptedException e) {
                 Thread.currentThread().interrupt();
             }
-            kill(child);
+            JavaBuild.stop(child);
             synchronized (results) {
                 if (stuck[0] != null) {
                     stuckIds.add(stuck[0]);
@@ -307,14 +310,13 @@ public final class TestLauncher {
             String cutOff = null;
             for (TestResult e : expected) {
                 TestResult r = results.remove(e.id());
-                if (r == null) {
+                if (r == null && wallIsGuard && !exited) {
+                    r = e.gradingFailure("the grader's test JVM was " + problem + ", although every limit"
+                            + " of the student's code is in its own time: the machine or the grader was too slow");
+                } else if (r == null) {
                     String why;
                     TestResult.Status s;
-                    if (wallIsGuard && !exited) {
-                        s = TestResult.Status.FAILED;
-                        why = TestResult.GRADING_FAILED + "the grader's test JVM was " + problem + ", although every limit"
-                                + " of the student's code is in its own time: the machine or the grader was too slow";
-                    } else if (e.id().equals(current[0])) {
+                    if (e.id().equals(current[0])) {
                         s = exited ? TestResult.Status.CRASHED : TestResult.Status.TIMED_OUT;
                         why = "this test was running when " + (problem.isEmpty() ? "the run stopped" : problem);
                         cutOff = e.id();
@@ -451,16 +453,6 @@ public final class TestLauncher {
             }
         } catch (IOException e) {
             // the child went away; what was read stands
-        }
-    }
-
-    private static void kill(Process p) {
-        p.descendants().forEach(ProcessHandle::destroyForcibly);
-        p.destroyForcibly();
-        try {
-            p.waitFor(5, TimeUnit.SECONDS);
-        } catch (InterruptedException e) {
-            Thread.currentThread().interrupt();
         }
     }
 }

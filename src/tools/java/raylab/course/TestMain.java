@@ -52,6 +52,9 @@ import com.fasterxml.jackson.databind.ObjectMapper;
  * reported: the scenes listed in the file ARGS, one line each of SCENE.json, OUT.png and NAME,
  * rendered by the {@link BoundaryHooks} with a new student process described by
  * FILE, stopped after SECONDS).
+ *
+ * <p>One job: the child side of {@link TestLauncher}'s protocol, with the listener that turns JUnit's
+ * events into its lines.
  */
 public final class TestMain {
     private TestMain() {
@@ -227,15 +230,25 @@ public final class TestMain {
                     // The guard fired: the student's code, if its own time reached the limit; else
                     // the machine or the grader, which is no failure of the student's (no points decided).
                     String own = studentTime.overLimit(t.getUniqueId(), ms);
-                    send(t, own == null ? TestResult.Status.FAILED : s, own == null ? studentTime.notTheStudents(ms) : own, ms);
+                    if (own == null) {
+                        send(t, TestResult.Status.FAILED, studentTime.notTheStudents(ms), ms, true);
+                    } else {
+                        send(t, s, own, ms);
+                    }
                     return;
                 }
-                send(t, s, s == TestResult.Status.PASSED ? "" : firstLines(r), ms);
+                boolean graders = r.getThrowable().orElse(null) instanceof GraderFault;
+                send(t, s, s == TestResult.Status.PASSED ? "" : firstLines(r), ms, s != TestResult.Status.PASSED && graders);
             }
 
             private void send(TestIdentifier t, TestResult.Status s, String message, long ms) {
+                send(t, s, message, ms, false);
+            }
+
+            private void send(TestIdentifier t, TestResult.Status s, String message, long ms, boolean gradingFailed) {
                 try {
-                    channel.send("RESULT " + json.writeValueAsString(toResult(t, s, message, captured.text(), ms)));
+                    channel.send("RESULT " + json.writeValueAsString(toResult(t, s, message, captured.text(), ms,
+                            gradingFailed)));
                 } catch (Exception e) {
                     channel.send("ERROR " + e.getClass().getSimpleName());
                 }
@@ -352,6 +365,11 @@ public final class TestMain {
     }
 
     static TestResult toResult(TestIdentifier t, TestResult.Status s, String message, String output, long ms) {
+        return toResult(t, s, message, output, ms, false);
+    }
+
+    static TestResult toResult(TestIdentifier t, TestResult.Status s, String message, String output, long ms,
+            boolean gradingFailed) {
         String cls = "";
         String method = t.getDisplayName();
         if (t.getSource().orElse(null) instanceof MethodSource m) {
@@ -364,7 +382,7 @@ public final class TestMain {
                 cls = id.substring(k + 7, id.indexOf(']', k));
             }
         }
-        return new TestResult(t.getUniqueId(), cls, method, t.getDisplayName(), s, message, output, ms);
+        return new TestResult(t.getUniqueId(), cls, method, t.getDisplayName(), s, message, output, ms, gradingFailed);
     }
 
     static boolean isTimeout(TestExecutionResult r) {
@@ -381,7 +399,8 @@ public final class TestMain {
             } else if (e instanceof OutOfMemoryError) {
                 text = "OutOfMemoryError: the test used more memory than allowed";
             } else if (!(e instanceof AssertionError) && !(e instanceof NotImplemented)) {
-                text = e.getClass().getSimpleName() + ": " + text;
+                // A grader fault is the cause the grader shows (TestResult.gradingFailed), not an exception of the student's.
+                text = e instanceof GraderFault ? text : e.getClass().getSimpleName() + ": " + text;
                 StackTraceElement[] st = e.getStackTrace();
                 for (StackTraceElement el : st) {
                     if (el.getClassName().startsWith("raylab.")) {

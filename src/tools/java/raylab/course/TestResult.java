@@ -12,20 +12,18 @@ package raylab.course;
  * @param message     the failure message (first lines), empty when passed
  * @param output      what the test printed (capped)
  * @param millis      duration
+ * @param gradingFailed whether the grading failed in this test, not the student's code (the trusted
+ *                    side's {@link GraderFault}, or a time limit that fired on time that was not the
+ *                    student's): no points are decided by it; set where that is known, never read
+ *                    from the message
  */
 public record TestResult(String id, String className, String method, String displayName, Status status,
-        String message, String output, long millis) {
+        String message, String output, long millis, boolean gradingFailed) {
 
-    /**
-     * How the message of a test begins when the grading failed in it, not the student's code
-     * (the trusted side's {@code raylab.boundary.GradingFailure}, or a time limit that fired on
-     * time that was not the student's): no points are decided by such a test.
-     */
-    public static final String GRADING_FAILED = "GradingFailure: ";
-
-    /** Whether this test's outcome is a failure of the grading itself ({@link #GRADING_FAILED}). */
-    public boolean gradingFailed() {
-        return status != Status.PASSED && message != null && message.startsWith(GRADING_FAILED);
+    /** A result of the student's code (not a failure of the grading). */
+    public TestResult(String id, String className, String method, String displayName, Status status,
+            String message, String output, long millis) {
+        this(id, className, method, displayName, status, message, output, millis, false);
     }
 
     /** What happened to a test. */
@@ -39,6 +37,11 @@ public record TestResult(String id, String className, String method, String disp
 
     /** A copy with another status and message (used by the launcher when it knows more). */
     public TestResult with(Status s, String why) {
-        return new TestResult(id, className, method, displayName, s, why, output, millis);
+        return new TestResult(id, className, method, displayName, s, why, output, millis, false);
+    }
+
+    /** A copy that failed because the grading failed, not the student's code: {@code why} is the cause. */
+    public TestResult gradingFailure(String why) {
+        return new TestResult(id, className, method, displayName, Status.FAILED, why, output, millis, true);
     }
 }

@@ -42,6 +42,9 @@ import raylab.scene.Scene;
  * L from the sum of its terms ka·Ia + Σ (diffuse + specular), which it equals up to rounding.
  * Residuals are zigzag-coded and split into their three byte planes, so that the many small ones
  * compress well.
+ *
+ * <p>One file format, its writer and its reader side by side so that each field is read as it is
+ * written.
  */
 public final class TraceFile {
     /** The format's version, in the first line. */

@@ -47,6 +47,9 @@ import raylab.surface.Surface;
  * Arguments: {@code --student CLASS} (repeatable): the student's classes, whose stack frames an
  * exception report keeps; {@code --channel}: frames on file descriptors 3 and 4 (the JVM needs
  * {@link #CHANNEL_JVM_OPTION} to open them).
+ *
+ * <p>One job, kept in one file on purpose: the student side of the boundary, whose frame handlers must
+ * be read together to see everything that crosses it.
  */
 public final class StudentServer {
     private final DataInputStream in;

@@ -29,6 +29,9 @@ import raylab.ray.Ray;
  * a frame is checked against the bytes left in it before anything is allocated; values nest at most
  * {@link #MAX_DEPTH} deep and a frame holds at most {@link #MAX_VALUES} of them. Whatever is wrong
  * with a frame ends in a {@link ProtocolException} (fuzzed: {@code WireFuzzTest}).
+ *
+ * <p>One protocol kept whole on purpose: each encoder sits beside its decoder, and both sides run this
+ * same class.
  */
 public final class Wire {
     /** The first line the student process prints, before any frame. */

@@ -50,6 +50,9 @@ import raylab.surface.Surface;
  *
  * <p>The milestone's reference runs here only to trace a band's pixels once for the reference
  * image ({@link #beginReference}); those traces note nothing and send nothing.
+ *
+ * <p>One algorithm kept whole on purpose: the rounds, the guesses and the rule above are correct only
+ * together, and a reviewer checks the rule against every line at once.
  */
 public final class Speculation {
     /** Rounds per band before the remaining pixels are traced one call at a time. */
@@ -354,7 +357,7 @@ public final class Speculation {
      */
     private List<StudentProcess.Answered> answersFor(ShadingPoint at, List<PointLight> lights) {
         List<StudentProcess.Answered> answers = new ArrayList<>();
-        boolean looks = StudentProcess.hearsLooks(at);
+        boolean looks = GraderObjects.hearsLooks(at);
         note(answers, at, Wire.OP_AMBIENT, new Object[0], at::ambient);
         for (PointLight light : lights) {
             Vec3 d = light.position.minus(at.x);
@@ -468,7 +471,7 @@ public final class Speculation {
                 o.writeVec3(at.n);
                 o.writeVec3(at.v);
                 Wire.writeValue(o, at.material, this);
-                o.writeBoolean(StudentProcess.hearsLooks(at));
+                o.writeBoolean(GraderObjects.hearsLooks(at));
                 return true;
             }
             if (x instanceof PointLight || x instanceof Surface || x instanceof Material) {
@@ -526,7 +529,7 @@ public final class Speculation {
         Object p = predictorOf.get(self);
         if (p == null) {
             Class<?> standIn = Class.forName(cls);
-            Object[] data = StudentProcess.constructorData(self, standIn);
+            Object[] data = GraderObjects.constructorData(self, standIn);
             Class<?> ref = Class.forName(cls, true, predictors);
             for (Constructor<?> k : ref.getConstructors()) {
                 if (k.getParameterCount() == data.length && fits(k.getParameterTypes(), data)) {

@@ -8,10 +8,6 @@ import java.io.File;
 import java.io.IOException;
 import java.io.InputStream;
 import java.io.OutputStream;
-import java.lang.reflect.Constructor;
-import java.lang.reflect.Field;
-import java.lang.reflect.Method;
-import java.lang.reflect.Parameter;
 import java.nio.charset.StandardCharsets;
 import java.nio.file.Files;
 import java.nio.file.Path;
@@ -77,61 +73,17 @@ public final class StudentProcess implements AutoCloseable {
     private final Refs refs = new Refs();
     private final Wire.Out buf = new Wire.Out();
     private RuntimeException pendingFailure;
-    // The watchdog's view of the current outermost call.
-    /** The number of the outermost call running (−1: none), for the watchdog. */
-    private volatile long callSeq = -1;
-    private long callCount;
-    private volatile long callStartWall;
-    private volatile boolean timedOut;
-    private volatile boolean starting;
-    private final Thread watchdog;
-    private volatile boolean closed;
     private long calls;
-    /** Wall time the grader spent answering the current call's questions (not the student's time). */
-    private volatile long trustedWall;
-    /** When the grader began the answer it is working on ({@link System#nanoTime}), 0: none. */
-    private volatile long answering;
     /** Milliseconds added to each answer of the grader's (-Draylab.boundary.slowGrader=MS: tests of a slow grader). */
     private static final long SLOW_GRADER_MILLIS = Long.getLong("raylab.boundary.slowGrader", 0);
-    /** CPU time of the grader's thread answering the current call's questions. */
-    private long trustedCpu;
-    /** The current process's CPU time as the watchdog last read it, and that of the processes that ended. */
-    private volatile long sampledCpu;
-    private long endedCpu;
-    /**
-     * The student's own time in calls so far, as the watchdog measured it (each call's CPU time,
-     * or its wall time less the time it waited for a CPU or for the grader, whichever is more).
-     */
-    private volatile long studentTime;
-    /** The student's time when the current test began, and the test's limit in it (0: none). */
-    private volatile long testStart;
-    private volatile long testLimit;
-    private volatile boolean testTimedOut;
+    /** The student's time in calls and the watchdog that stops a call over its budget. */
+    private final CallClock clock;
     /** Run before each frame of an outermost call (a render's deadline), or null. */
     private Runnable beforeFrame;
 
-    /**
-     * This thread's CPU time in ns, or 0 in a JVM without the java.management module (a test JVM
-     * started with --limit-modules: no bound on the grader's time there, which grades nothing).
-     */
-    private static long threadCpuNanos() {
-        try {
-            return ThreadCpu.BEAN.getCurrentThreadCpuTime();
-        } catch (LinkageError noManagement) {
-            return 0;
-        }
-    }
-
-    /** Loaded on first use, so that this class loads without java.management. */
-    private static final class ThreadCpu {
-        static final java.lang.management.ThreadMXBean BEAN = java.lang.management.ManagementFactory.getThreadMXBean();
-    }
-
     public StudentProcess(Config config) {
         this.config = config;
-        watchdog = new Thread(this::watch, "student-process-watchdog");
-        watchdog.setDaemon(true);
-        watchdog.start();
+        this.clock = new CallClock(() -> proc, config.callBudgetMillis());
     }
 
     /** Where the student's captured output goes (default: this JVM's standard output). */
@@ -155,132 +107,12 @@ public final class StudentProcess implements AutoCloseable {
         return starts;
     }
 
-    private void watch() {
-        long seen = -1;
-        long baseline = 0;
-        long waitedBase = 0;
-        long ownBefore = 0;
-        long ownNow = 0;
-        while (!closed) {
-            try {
-                Thread.sleep(25);
-            } catch (InterruptedException e) {
-                return;
-            }
-            long call = callSeq;
-            Process p = proc;
-            if (call < 0 || p == null) {
-                continue;
-            }
-            // The CPU time at the first look at a call is its baseline (at most one tick late):
-            // reading /proc at every call would cost more than the call.
-            long cpu = watchedCpuNanos(p);
-            sampledCpu = cpu;
-            if (call != seen) {
-                seen = call;
-                baseline = starting ? 0 : cpu;
-                waitedBase = waited;
-                ownBefore += ownNow;
-                ownNow = 0;
-                continue;
-            }
-            long used = cpu - baseline;
-            // Wall time too, more generously: a student process that sleeps uses no CPU. But not
-            // the time it waited for a CPU (the machine's load) or for the grader's answers.
-            long since = answering;
-            long wall = System.nanoTime() - callStartWall - trustedWall - (since == 0 ? 0 : System.nanoTime() - since);
-            long own = wall - Math.min(Math.max(0, wall), waited - waitedBase);
-            if (!starting) { // a JVM's start is not the student's time
-                ownNow = Math.max(ownNow, Math.max(own, used));
-                studentTime = ownBefore + ownNow;
-            }
-            long budget = Math.max(starting ? 30_000 : 0, config.callBudgetMillis()) * 1_000_000L;
-            if (used > budget || own > 3 * budget + 5_000_000_000L) {
-                timedOut = true;
-                kill(p);
-            } else if (testLimit > 0 && studentTime - testStart > testLimit) {
-                testTimedOut = true;
-                timedOut = true;
-                kill(p);
-            }
-        }
-    }
-
-    private static void kill(Process p) {
-        p.descendants().forEach(ProcessHandle::destroyForcibly);
-        p.destroyForcibly();
-    }
-
-    private Process watched;
-    private List<Long> watchedPids = List.of();
-    private long pidsListed;
-    /** Time the watched processes' threads waited for a CPU, summed since the watchdog began (ns). */
-    private long waited;
-    private final Map<Long, Long> runDelays = new HashMap<>();
-    private long delaysRead;
-
-    /**
-     * As {@link #cpuNanos}, with the process's descendants listed again only every second:
-     * listing them reads every process of the machine from /proc. Every quarter second it also
-     * adds to {@link #waited} how long their threads waited on a run queue since the last look.
-     */
-    private long watchedCpuNanos(Process p) {
-        long now = System.nanoTime();
-        if (p != watched || now - pidsListed > 1_000_000_000L) {
-            watched = p;
-            pidsListed = now;
-            List<Long> pids = new ArrayList<>();
-            pids.add(p.pid());
-            p.descendants().forEach(d -> pids.add(d.pid()));
-            watchedPids = pids;
-        }
-        long t = 0;
-        for (long pid : watchedPids) {
-            t += ticks(pid);
-        }
-        if (now - delaysRead > 250_000_000L) {
-            delaysRead = now;
-            waited += runDelaySince(watchedPids, runDelays);
-        }
-        return t * 10_000_000L;
-    }
-
-    /**
-     * Nanoseconds the threads of {@code pids} waited on a run queue (runnable, no CPU free) since
-     * {@code last} (thread id to its total at the last look, updated; a new thread counts from
-     * its start). 0 where the kernel does not keep schedstat.
-     */
-    static long runDelaySince(List<Long> pids, Map<Long, Long> last) {
-        long added = 0;
-        Map<Long, Long> now = new HashMap<>();
-        for (long pid : pids) {
-            java.io.File[] tasks = new java.io.File("/proc/" + pid + "/task").listFiles();
-            if (tasks == null) {
-                continue;
-            }
-            for (java.io.File task : tasks) {
-                try {
-                    long tid = Long.parseLong(task.getName());
-                    String[] f = Files.readString(task.toPath().resolve("schedstat")).trim().split(" ");
-                    long delay = Long.parseLong(f[1]);
-                    now.put(tid, delay);
-                    added += Math.max(0, delay - last.getOrDefault(tid, 0L));
-                } catch (IOException | RuntimeException e) {
-                    // the thread ended, or no schedstat
-                }
-            }
-        }
-        last.clear();
-        last.putAll(now);
-        return added;
-    }
-
     /**
      * CPU time of every student process this object started, so far (the current one as the
      * watchdog last read it, at most a few ticks behind), in ns.
      */
     public synchronized long studentCpuNanos() {
-        return endedCpu + (proc == null ? 0 : sampledCpu);
+        return clock.studentCpuNanos(proc != null);
     }
 
     /**
@@ -289,7 +121,7 @@ public final class StudentProcess implements AutoCloseable {
      * quarter of a second behind. What a test's time limit is measured in.
      */
     public long studentTimeNanos() {
-        return studentTime;
+        return clock.studentTimeNanos();
     }
 
     /**
@@ -298,8 +130,7 @@ public final class StudentProcess implements AutoCloseable {
      * 0: no limit beyond each call's.
      */
     public void startTest(long limitNanos) {
-        testStart = studentTime;
-        testLimit = limitNanos;
+        clock.startTest(limitNanos);
     }
 
     /**
@@ -320,26 +151,12 @@ public final class StudentProcess implements AutoCloseable {
     /** CPU time of the current student process (0 if none runs), for measurements. */
     public static long cpuNanosOf(StudentProcess s) {
         Process p = s.proc;
-        return p == null ? 0 : cpuNanos(p);
+        return p == null ? 0 : CallClock.cpuNanos(p);
     }
 
     /** CPU time (user + system) of the process and its descendants, from /proc; 0 where unknown. */
     public static long cpuNanos(Process p) {
-        long ticks = ticks(p.pid());
-        for (ProcessHandle d : (Iterable<ProcessHandle>) p.descendants()::iterator) {
-            ticks += ticks(d.pid());
-        }
-        return ticks * 10_000_000L; // USER_HZ is 100 on Linux
-    }
-
-    private static long ticks(long pid) {
-        try {
-            String s = Files.readString(Path.of("/proc", Long.toString(pid), "stat"));
-            String[] f = s.substring(s.lastIndexOf(')') + 2).split(" ");
-            return Long.parseLong(f[11]) + Long.parseLong(f[12]);
-        } catch (IOException | RuntimeException e) {
-            return 0;
-        }
+        return CallClock.cpuNanos(p);
     }
 
     /** Starts the student process if none is running (a failure shows at the next call). */
@@ -374,10 +191,7 @@ public final class StudentProcess implements AutoCloseable {
         out = new BufferedOutputStream(proc.getOutputStream(), 1 << 16);
         // The HELLO line: anything else means the JVM did not start as a student server.
         ByteArrayOutputStream line = new ByteArrayOutputStream();
-        starting = true;
-        callStartWall = System.nanoTime();
-        callSeq = ++callCount;
-        timedOut = false;
+        clock.startBegins();
         try {
             for (int b; (b = in.read()) != '\n';) {
                 if (b < 0 || line.size() > 200) {
@@ -389,8 +203,7 @@ public final class StudentProcess implements AutoCloseable {
                 line.write(b);
             }
         } finally {
-            callSeq = -1;
-            starting = false;
+            clock.startEnds();
         }
         if (!line.toString(StandardCharsets.US_ASCII).equals(Wire.HELLO)) {
             dead();
@@ -411,10 +224,9 @@ public final class StudentProcess implements AutoCloseable {
     private void dead() {
         Process p = proc;
         proc = null;
-        endedCpu += sampledCpu;
-        sampledCpu = 0;
+        clock.processEnded();
         if (p != null) {
-            kill(p);
+            CallClock.kill(p);
             try {
                 p.waitFor();
             } catch (InterruptedException e) {
@@ -751,12 +563,7 @@ public final class StudentProcess implements AutoCloseable {
                 start();
             }
             if (outer) {
-                timedOut = false;
-                callStartWall = System.nanoTime();
-                trustedWall = 0;
-                trustedCpu = 0;
-                answering = 0;
-                callSeq = ++callCount;
+                clock.callBegins();
             }
             depth++;
             try {
@@ -765,7 +572,7 @@ public final class StudentProcess implements AutoCloseable {
                 depth--;
             }
         } catch (IOException e) {
-            boolean slow = timedOut;
+            boolean slow = clock.timedOut();
             String why = firstLine(stderr);
             Process p = proc;
             boolean outOfMemory = false;
@@ -788,9 +595,8 @@ public final class StudentProcess implements AutoCloseable {
                 throw new StudentException("java.lang.OutOfMemoryError", "your code ran out of memory (look for"
                         + " something that grows with every call, such as a list kept in a static field)", List.of(), "");
             }
-            if (slow && testTimedOut) {
-                testTimedOut = false;
-                throw new StudentTimeout("your code took longer than " + testLimit / 1e9 + " s in this test and was"
+            if (slow && clock.takeTestTimedOut()) {
+                throw new StudentTimeout("your code took longer than " + clock.testLimit() / 1e9 + " s in this test and was"
                         + " stopped (an endless loop?)");
             }
             if (slow) {
@@ -805,7 +611,7 @@ public final class StudentProcess implements AutoCloseable {
                     + (why.isEmpty() ? " (System.exit, running out of memory or a crash)" : ": " + why), List.of(), "");
         } finally {
             if (outer) {
-                callSeq = -1;
+                clock.callEnds();
                 ephemeral.clear();
                 ephemeralOf.clear();
                 pendingFailure = null;
@@ -925,7 +731,7 @@ public final class StudentProcess implements AutoCloseable {
         }
         Object result;
         long w0 = System.nanoTime();
-        long c0 = threadCpuNanos();
+        long c0 = CallClock.threadCpuNanos();
         try {
             result = answer(q.target(), q.op(), q.args());
         } catch (StudentTimeout e) {
@@ -945,11 +751,8 @@ public final class StudentProcess implements AutoCloseable {
      * the grader work without limit.
      */
     private void bill(long wall0, long cpu0) {
-        answering = 0;
-        trustedWall += System.nanoTime() - wall0;
-        trustedCpu += Math.max(0, threadCpuNanos() - cpu0);
-        long bound = Math.max(1_000, config.callBudgetMillis()) * 1_000_000L;
-        if (trustedCpu > bound && proc != null) {
+        long bound = clock.graderBoundNanos();
+        if (clock.bill(wall0, cpu0) && proc != null) {
             dead();
             throw new StudentTimeout("your code asked the grader so much during one call that answering took more than "
                     + bound / 1_000_000_000.0 + " s of the grader's CPU time, and it was stopped (questions in an endless loop?)");
@@ -996,7 +799,7 @@ public final class StudentProcess implements AutoCloseable {
         Object[] a = q.args();
         Object result;
         long w0 = System.nanoTime();
-        long c0 = threadCpuNanos();
+        long c0 = CallClock.threadCpuNanos();
         try {
             result = answer(q.target(), q.op(), a);
             bill(w0, c0);
@@ -1018,9 +821,7 @@ public final class StudentProcess implements AutoCloseable {
     }
 
     private Object answer(Object t, byte op, Object[] a) {
-        if (answering == 0) {
-            answering = System.nanoTime();
-        }
+        clock.answerBegins();
         if (SLOW_GRADER_MILLIS > 0) {
             try {
                 Thread.sleep(SLOW_GRADER_MILLIS);
@@ -1086,7 +887,7 @@ public final class StudentProcess implements AutoCloseable {
         }
         int id = nextHandle++;
         try {
-            Object[] data = constructorData(o, as);
+            Object[] data = GraderObjects.constructorData(o, as);
             Wire.Out d = new Wire.Out();
             d.writeInt(id);
             d.writeString(as.getName());
@@ -1112,130 +913,6 @@ public final class StudentProcess implements AutoCloseable {
 
         DefineFailed(IOException e) {
             super(e);
-        }
-    }
-
-    private static final Map<Class<?>, Constructor<?>> CONSTRUCTORS = new java.util.concurrent.ConcurrentHashMap<>();
-
-    /**
-     * What the object was made from: for each parameter of its widest public constructor (names
-     * known through {@code -parameters}) the public field or accessor of that name, if it is a
-     * plain value; null otherwise (a material, a surface: the student process gets none).
-     */
-    static Object[] constructorData(Object o, Class<?> as) {
-        Constructor<?> k = CONSTRUCTORS.computeIfAbsent(as, c -> {
-            Constructor<?> best = null;
-            for (Constructor<?> x : c.getConstructors()) {
-                if (best == null || x.getParameterCount() > best.getParameterCount()) {
-                    best = x;
-                }
-            }
-            return best;
-        });
-        if (k == null) {
-            throw new IllegalArgumentException(as.getName() + " has no public constructor");
-        }
-        Parameter[] ps = k.getParameters();
-        Object[] data = new Object[ps.length];
-        List<Field> fields = null;
-        int nextField = 0;
-        for (int i = 0; i < ps.length; i++) {
-            Object v;
-            if (ps[i].isNamePresent()) {
-                v = property(o, ps[i].getName());
-            } else {
-                // Without -parameters: the public instance fields in declaration order stand for
-                // the value parameters, name() for the String one.
-                if (fields == null) {
-                    fields = publicFields(as);
-                }
-                Class<?> t = ps[i].getType();
-                if (t == String.class) {
-                    v = property(o, "name");
-                } else if (nextField < fields.size() && wrap(t).isAssignableFrom(wrap(fields.get(nextField).getType()))) {
-                    v = property(o, fields.get(nextField++).getName());
-                } else {
-                    v = null;
-                }
-            }
-            data[i] = plain(v) ? v : null;
-        }
-        return data;
-    }
-
-    private static List<Field> publicFields(Class<?> c) {
-        List<Class<?>> chain = new ArrayList<>();
-        for (Class<?> x = c; x != null && x != Object.class; x = x.getSuperclass()) {
-            chain.add(0, x);
-        }
-        List<Field> out = new ArrayList<>();
-        for (Class<?> x : chain) {
-            for (Field f : x.getDeclaredFields()) {
-                int m = f.getModifiers();
-                if (java.lang.reflect.Modifier.isPublic(m) && !java.lang.reflect.Modifier.isStatic(m)) {
-                    out.add(f);
-                }
-            }
-        }
-        return out;
-    }
-
-    private static Class<?> wrap(Class<?> t) {
-        return t == double.class ? Double.class : t == int.class ? Integer.class : t == boolean.class ? Boolean.class
-                : t == long.class ? Long.class : t;
-    }
-
-    private static boolean plain(Object v) {
-        return v instanceof Double || v instanceof Integer || v instanceof Boolean || v instanceof Long
-                || v instanceof String || v instanceof Vec3 || v instanceof Color || v instanceof PointLight
-                || v instanceof Ray;
-    }
-
-    private static Object property(Object o, String name) {
-        try {
-            Field f = o.getClass().getField(name);
-            return f.get(o);
-        } catch (NoSuchFieldException | IllegalAccessException e) {
-            try {
-                Method m = o.getClass().getMethod(name);
-                return m.invoke(o);
-            } catch (ReflectiveOperationException e2) {
-                return null;
-            }
-        }
-    }
-
-    private static final Map<Class<?>, Boolean> HEARS_LOOKS = new java.util.concurrent.ConcurrentHashMap<>();
-    private static final Field ANSWERS;
-
-    static {
-        Field f = null;
-        try {
-            f = ShadingPoint.class.getDeclaredField("answers");
-            f.setAccessible(true);
-        } catch (ReflectiveOperationException | RuntimeException e) {
-            f = null;
-        }
-        ANSWERS = f;
-    }
-
-    /** Whether a shading point's answers want to hear toLight (traces): else no callback for it. */
-    static boolean hearsLooks(ShadingPoint at) {
-        if (ANSWERS == null) {
-            return true;
-        }
-        try {
-            Object a = ANSWERS.get(at);
-            return HEARS_LOOKS.computeIfAbsent(a.getClass(), c -> {
-                try {
-                    return c.getMethod("lookedAt", ShadingPoint.class, PointLight.class, Vec3.class)
-                            .getDeclaringClass() != ShadingPoint.Answers.class;
-                } catch (NoSuchMethodException e) {
-                    return true;
-                }
-            });
-        } catch (IllegalAccessException e) {
-            return true;
         }
     }
 
@@ -1309,7 +986,7 @@ public final class StudentProcess implements AutoCloseable {
             if (x instanceof ShadingPoint at) {
                 o.writeByte(Wire.SHADING_POINT);
                 o.writeInt(ephemeral(at));
-                o.writeBoolean(hearsLooks(at));
+                o.writeBoolean(GraderObjects.hearsLooks(at));
                 o.writeVec3(at.x);
                 o.writeVec3(at.n);
                 o.writeVec3(at.v);
@@ -1345,8 +1022,7 @@ public final class StudentProcess implements AutoCloseable {
 
     @Override
     public synchronized void close() {
-        closed = true;
-        watchdog.interrupt();
+        clock.close();
         if (proc != null) {
             try {
                 out.close();

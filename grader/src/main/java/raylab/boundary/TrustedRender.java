@@ -278,7 +278,8 @@ public final class TrustedRender {
             } catch (StudentException | StudentTimeout e) {
                 err = e.getMessage();
             } catch (GradingFailure e) {
-                err = GradingFailure.PREFIX + e.getMessage();
+                err = e.getMessage();
+                Files.writeString(Path.of(out + GradingFailure.RENDER_MARKER), "", StandardCharsets.UTF_8);
             } catch (Throwable t) {
                 err = t.toString();
             }

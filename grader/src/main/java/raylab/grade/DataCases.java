@@ -1,7 +1,6 @@
 package raylab.grade;
 
 import java.io.IOException;
-import java.nio.file.Files;
 import java.nio.file.Path;
 import java.util.ArrayList;
 import java.util.List;
@@ -59,25 +58,10 @@ public final class DataCases {
     /** Reads and checks a milestone's case files; a malformed file is an IOException naming it. */
     public static List<Case> load(Path root, Assignment a) throws IOException {
         List<Case> out = new ArrayList<>();
-        Path folder = root.resolve(a.folder() == null ? Path.of("assignments") : a.folder());
-        for (String rel : a.cases()) {
-            Path f = folder.resolve(rel);
-            if (!Files.isRegularFile(f)) {
-                throw new IOException(folder.resolve("assignment.json") + ": case file " + rel + " does not exist");
-            }
-            JsonNode root0;
-            try {
-                root0 = JSON.readTree(f.toFile());
-            } catch (IOException e) {
-                throw new IOException(f + ": not valid JSON: " + e.getMessage().split("\n")[0]);
-            }
-            List<JsonNode> nodes = new ArrayList<>();
-            if (root0.isArray()) {
-                root0.forEach(nodes::add);
-            } else {
-                nodes.add(root0);
-            }
-            for (JsonNode c : nodes) {
+        for (raylab.course.GradingPlan.CaseFile file : raylab.course.GradingPlan.caseFiles(root, a)) {
+            Path f = file.file();
+            String rel = file.rel();
+            for (JsonNode c : file.cases()) {
                 String where = f + " case '" + c.path("name").asText("?") + "'";
                 check(c, where);
                 String method = String.format(Locale.ROOT, "case%02d_%s", out.size() + 1,
@@ -164,31 +148,11 @@ public final class DataCases {
                 .append(" {\n");
         for (Case c : cases) {
             b.append("    @org.junit.jupiter.api.Test\n    @org.junit.jupiter.api.DisplayName(\"")
-                    .append(javaString(c.name())).append("\")\n    void ").append(c.method())
-                    .append("() throws Exception {\n        CaseCheck.check(\"").append(javaString(c.json()))
+                    .append(raylab.course.GradingPlan.javaString(c.name())).append("\")\n    void ").append(c.method())
+                    .append("() throws Exception {\n        CaseCheck.check(\"").append(raylab.course.GradingPlan.javaString(c.json()))
                     .append("\");\n    }\n\n");
         }
         b.append("}\n");
-        return b.toString();
-    }
-
-    private static String javaString(String s) {
-        StringBuilder b = new StringBuilder();
-        for (char ch : s.toCharArray()) {
-            switch (ch) {
-                case '\\' -> b.append("\\\\");
-                case '"' -> b.append("\\\"");
-                case '\n' -> b.append("\\n");
-                case '\r' -> b.append("\\r");
-                default -> {
-                    if (ch < 32 || ch > 126) {
-                        b.append(String.format("\\u%04x", (int) ch));
-                    } else {
-                        b.append(ch);
-                    }
-                }
-            }
-        }
         return b.toString();
     }
 }

@@ -139,16 +139,27 @@ public record GradeReport(List<Milestone> milestones, List<String> accepted, Lis
      * @param note       a zero-point note: a correct result that cost more than the render plan
      *                   needs ("your loop traced 2 shadow rays the plan could skip"), never a
      *                   reason for lost points; empty if none ({@link raylab.course.Notes})
+     * @param status     whether its points were decided ({@link GradingStatus#GRADED}) or its grading
+     *                   failed on the grader's side, as the grader knew it (never read from the message)
      */
     public record Test(String milestone, String name, Kind kind, double maxScore, double score, boolean passed,
-            String message, String output, String visibility, long millis, String file, Images images, String note) {
+            String message, String output, String visibility, long millis, String file, Images images, String note,
+            GradingStatus status) {
         public Test {
             message = Display.text(message);
             output = Display.text(output);
             note = note == null ? "" : Display.text(note);
+            status = status == null ? GradingStatus.GRADED : status;
         }
 
-        /** Without a note. */
+        /** Graded, with a note. */
+        public Test(String milestone, String name, Kind kind, double maxScore, double score, boolean passed,
+                String message, String output, String visibility, long millis, String file, Images images, String note) {
+            this(milestone, name, kind, maxScore, score, passed, message, output, visibility, millis, file, images, note,
+                    GradingStatus.GRADED);
+        }
+
+        /** Graded, without a note. */
         public Test(String milestone, String name, Kind kind, double maxScore, double score, boolean passed,
                 String message, String output, String visibility, long millis, String file, Images images) {
             this(milestone, name, kind, maxScore, score, passed, message, output, visibility, millis, file, images, "");
@@ -157,7 +168,13 @@ public record GradeReport(List<Milestone> milestones, List<String> accepted, Lis
         /** The same with this note. */
         public Test withNote(String n) {
             return new Test(milestone, name, kind, maxScore, score, passed, message, output, visibility, millis, file,
-                    images, n);
+                    images, n, status);
+        }
+
+        /** The same with this status. */
+        public Test withStatus(GradingStatus s) {
+            return new Test(milestone, name, kind, maxScore, score, passed, message, output, visibility, millis, file,
+                    images, note, s);
         }
     }
 

@@ -43,6 +43,8 @@ import raylab.course.TestResult;
  * ({@code ref/<id>/}); the grader's tests compiled from its own copies (visible tests, hidden
  * tests, generated data-case tests: {@code tests/}); and the list of tests each milestone must
  * report, found by running them on the reference ({@code expected.json}).
+ *
+ * <p>One job: the grader's build and its cache, whose parts share one cache key and one manifest.
  */
 final class GraderSetup {
     private static final ObjectMapper JSON = new ObjectMapper();

@@ -2,8 +2,6 @@ package raylab.grade;
 
 import com.fasterxml.jackson.databind.JsonNode;
 
-import raylab.course.TestResult;
-
 /**
  * Whether a grading decided the student's points, or failed on the grader's side: what each
  * platform's output renders ("the autograder failed" on Gradescope, {@code gradable: false} on
@@ -37,16 +35,15 @@ public enum GradingStatus {
 
     /** The message of a part whose grading failed, for {@code cause} (the trusted side's words, no student text). */
     static String message(String cause) {
-        String c = cause.startsWith(TestResult.GRADING_FAILED) ? cause.substring(TestResult.GRADING_FAILED.length()) : cause;
-        return STUDENT_MESSAGE + " (" + c + ")";
+        return STUDENT_MESSAGE + " (" + cause + ")";
     }
 
-    /** The status of a report: failed if any test or scene says the grading failed. */
+    /** The status of a report: failed if the grader marked any test or scene as failed on its side. */
     public static GradingStatus of(GradeReport report) {
         if (report != null) {
             for (GradeReport.Milestone m : report.milestones()) {
                 for (GradeReport.Test t : m.tests()) {
-                    if (t.message() != null && t.message().startsWith(STUDENT_MESSAGE)) {
+                    if (t.status() == GRADING_FAILED) {
                         return GRADING_FAILED;
                     }
                 }
@@ -55,7 +52,11 @@ public enum GradingStatus {
         return GRADED;
     }
 
-    /** The status of a Gradescope results.json as {@code raylab grade} writes it (tests[].output). */
+    /**
+     * The status of a Gradescope results.json as {@code raylab grade} writes it (tests[].output),
+     * for grade-all, which has only that file of each student's grading: Gradescope's format has
+     * no field for it, so the one message every failed part starts with is the carrier there.
+     */
     public static GradingStatus ofGradescope(JsonNode results) {
         JsonNode tests = results == null ? null : results.get("tests");
         if (tests != null) {

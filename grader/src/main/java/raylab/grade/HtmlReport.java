@@ -25,6 +25,9 @@ import raylab.render.ImageCompare;
  * files as one line, and is kept under {@link #STUDENT_BUDGET} characters by downscaling the
  * images. Styles are inline (Gradescope keeps the HTML, not a style sheet) and the layout wraps
  * within any width.
+ *
+ * <p>One writer for one format: the report's HTML, whose two versions (students', instructors') differ
+ * only in what they leave out.
  */
 final class HtmlReport {
     /**

@@ -46,6 +46,9 @@ import raylab.course.JavaBuild;
  * descendants and every process of the grader's user or sandbox user that carries this box's
  * marker or runs from this box are killed (not all processes of a user: two gradings at once do
  * not kill each other's children).
+ *
+ * <p>One job: where and as whom student code runs; its three modes share one box layout and one
+ * finishing step.
  */
 final class Sandbox {
     /** The default name of the unprivileged user (created by the bundle's setup.sh and .ci/run). */
@@ -532,13 +535,7 @@ final class Sandbox {
      */
     void finish(Box b, Process p) {
         if (p != null) {
-            p.descendants().forEach(ProcessHandle::destroyForcibly);
-            p.destroyForcibly();
-            try {
-                p.waitFor(5, TimeUnit.SECONDS);
-            } catch (InterruptedException e) {
-                Thread.currentThread().interrupt();
-            }
+            JavaBuild.stop(p);
         }
         for (int round = 0; round < 3; round++) {
             List<ProcessHandle> left = leftovers(b);

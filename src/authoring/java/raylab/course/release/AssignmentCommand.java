@@ -42,6 +42,9 @@ import raylab.scene.SceneLoader;
  * the milestone's total), rewrites the handout's grading table from it, and shows what students
  * will see; every file is written to a temporary name and moved, and nothing is changed when a
  * step fails.
+ *
+ * <p>One command with three subcommands that share the same read, change and atomic write of {@code
+ * assignment.json} and the handout.
  */
 @Command(name = "assignment", mixinStandardHelpOptions = true,
         description = {"Add a graded scene, data cases or a hidden test to a milestone (instructors).",

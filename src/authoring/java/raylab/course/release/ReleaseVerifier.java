@@ -54,6 +54,8 @@ import raylab.render.PngFiles;
  * {@code ./raylab --help}, {@code ./raylab render scenes/sphere.json}, {@code ./raylab check}.</li>
  * </ul>
  * Child JVMs run at most two at a time.
+ *
+ * <p>One job: the release's checks, each a short method, run in the order of the list above.
  */
 public final class ReleaseVerifier {
     /** Message of {@link raylab.course.NotImplemented}, which every stubbed test must show. */

@@ -49,6 +49,9 @@ import raylab.course.JavaBuild;
  * {@code DIR/STUDENT/} with a marker holding a digest of the submission, so a second run grades
  * only what is new, changed or failed (resume). Then {@code DIR/gradebook.csv}: one row per
  * student, one column per milestone, the total and a status.
+ *
+ * <p>One command: grading a class, its resume markers and its gradebook, which read the same
+ * per-student folders.
  */
 @Command(name = "grade-all", mixinStandardHelpOptions = true,
         description = {"Grade every submission in a folder (instructors): each entry (a folder or a zip) is one student.",

@@ -1,0 +1,60 @@
+package raylab.grade;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertFalse;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.util.List;
+
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.io.TempDir;
+
+import raylab.boundary.GradingFailure;
+
+/**
+ * A report's status is the value the grader set on its tests and scenes where it knew the grading
+ * failed, not a match on their messages; a scene's render says it with a marker file beside its
+ * error, whatever the error's text.
+ */
+class GradingStatusValueTest {
+    private static GradeReport report(String message, GradingStatus status) {
+        GradeReport.Test t = new GradeReport.Test("sphere", "hits", GradeReport.Kind.VISIBLE, 2, 0, false, message,
+                "", "visible", 1, "SphereTest.java", null, "", status);
+        return new GradeReport(List.of(new GradeReport.Milestone("sphere", "Sphere", List.of(), List.of(t))),
+                List.of(), List.of(), List.of(), 1);
+    }
+
+    @Test
+    void theStatusIsTheTestsValue() {
+        assertEquals(GradingStatus.GRADED, GradingStatus.of(report(GradingStatus.STUDENT_MESSAGE + " (printed by"
+                + " the student)", GradingStatus.GRADED)), "a student's text that looks like the grader's decides nothing");
+        assertEquals(GradingStatus.GRADING_FAILED, GradingStatus.of(report(GradingStatus.message("too slow"),
+                GradingStatus.GRADING_FAILED)));
+        assertEquals(GradingStatus.GRADED, GradingStatus.of(null));
+    }
+
+    @Test
+    void copiesKeepTheStatus() {
+        GradeReport.Test t = report("m", GradingStatus.GRADING_FAILED).milestones().get(0).tests().get(0);
+        assertEquals(GradingStatus.GRADING_FAILED, t.withNote("n").status());
+        assertEquals(GradingStatus.GRADED, t.withStatus(GradingStatus.GRADED).status());
+        assertEquals(GradingStatus.GRADED, new GradeReport.Test("s", "n", GradeReport.Kind.SCENE, 1, 0, false, "m", "",
+                "visible", 0, "f", null).status(), "a test built without a status was graded");
+    }
+
+    @Test
+    void aRenderSaysItsGradingFailedWithAMarkerNotItsText(@TempDir Path dir) throws Exception {
+        Path graders = dir.resolve("scene0.png");
+        Files.writeString(Path.of(graders + ".err"), "the student process was killed twice");
+        Files.writeString(Path.of(graders + GradingFailure.RENDER_MARKER), "");
+        Path students = dir.resolve("scene1.png");
+        Files.writeString(Path.of(students + ".err"), "GradingFailure: thrown by the student's code");
+        List<SceneGrading.Render> r = SceneGrading.read(List.of(graders, students));
+        assertTrue(r.get(0).gradingFailed(), r.get(0).toString());
+        assertEquals("the student process was killed twice", r.get(0).error());
+        assertFalse(r.get(1).gradingFailed(), r.get(1).toString());
+        assertEquals("GradingFailure: thrown by the student's code", r.get(1).error());
+    }
+}
