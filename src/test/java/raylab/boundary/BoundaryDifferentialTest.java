@@ -39,7 +39,7 @@ import raylab.remote.StudentServer;
  * submission (src/test/resources/submissions/forgers/, armed); the student process records every byte it receives
  * ({@link StudentServer#RECORD}), and the two recordings must be the same, byte for byte. A
  * value computed by the reference, or derived from its state, that reached the student's
- * process would differ.
+ * process would differ. A milestone's stand-ins are compiled once, for its three submissions.
  */
 class BoundaryDifferentialTest {
     private static final ObjectMapper JSON = new ObjectMapper();
@@ -118,8 +118,7 @@ class BoundaryDifferentialTest {
                 }
             }
         }
-        Path standIns = dir.resolve("standins");
-        StandIns.compile(standInSources, StudentProcessTest.classDirs(), standIns);
+        Path standIns = standIns(milestone, standInSources);
         Path student = dir.resolve("student");
         StandIns.compile(studentSources, StudentProcessTest.classDirs(), student);
         // The milestone's scenes at a tenth of their size, beside the meshes they name.
@@ -158,6 +157,24 @@ class BoundaryDifferentialTest {
         assertArrayEquals(plain.frames(), perturbed.frames(), () -> what
                 + ": the bytes the student process received, with the reference as it is (expected) and perturbed"
                 + " (actual); first difference at byte " + firstDifference(plain.frames(), perturbed.frames()));
+    }
+
+    /** The stand-ins of each milestone, compiled once per class run (the same for its three submissions). */
+    @TempDir
+    static Path shared;
+    private static final Map<String, Map<String, String>> STAND_INS = new HashMap<>();
+
+    /** The milestone's stand-in classes from {@code sources}: compiled by its first case, reused by the others. */
+    private static synchronized Path standIns(String milestone, Map<String, String> sources) throws Exception {
+        Path out = shared.resolve("standins-" + milestone);
+        Map<String, String> before = STAND_INS.get(milestone);
+        if (before == null) {
+            StandIns.compile(sources, StudentProcessTest.classDirs(), out);
+            STAND_INS.put(milestone, Map.copyOf(sources));
+        } else {
+            assertEquals(before, sources, "the same stand-in sources for " + milestone);
+        }
+        return out;
     }
 
     private static int firstDifference(byte[] a, byte[] b) {
