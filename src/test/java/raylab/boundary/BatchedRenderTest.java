@@ -216,20 +216,14 @@ class BatchedRenderTest {
     private record Render(byte[] raw, String error, byte[] png, byte[] reference, String log) {
     }
 
-    /** The student classes compiled so far: their sources by folder (each folder compiled once). */
-    private static final Map<Path, Map<String, String>> COMPILED = new java.util.HashMap<>();
+    /** The student classes compiled so far (each folder compiled once). */
+    private static final CompiledOnce COMPILED = new CompiledOnce();
     /** The renders made so far, by what they render (each made once: several tests compare with the same one). */
     private static final Map<List<Object>, Render> RENDERS = new java.util.HashMap<>();
 
     /** The student's classes from {@code sources} into {@code out}, compiled once per class run. */
-    private static synchronized void compile(Map<String, String> sources, Path out) throws Exception {
-        Map<String, String> before = COMPILED.get(out);
-        if (before == null) {
-            StandIns.compile(sources, StudentProcessTest.classDirs(), out);
-            COMPILED.put(out, Map.copyOf(sources));
-        } else {
-            assertEquals(before, sources, "the same sources for " + out);
-        }
+    private static void compile(Map<String, String> sources, Path out) throws Exception {
+        COMPILED.compile(sources, out);
     }
 
     /**

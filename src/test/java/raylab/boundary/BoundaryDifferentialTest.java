@@ -118,7 +118,7 @@ class BoundaryDifferentialTest {
                 }
             }
         }
-        Path standIns = standIns(milestone, standInSources);
+        Path standIns = STAND_INS.compile(standInSources, shared.resolve("standins-" + milestone));
         Path student = dir.resolve("student");
         StandIns.compile(studentSources, StudentProcessTest.classDirs(), student);
         // The milestone's scenes at a tenth of their size, beside the meshes they name.
@@ -162,20 +162,7 @@ class BoundaryDifferentialTest {
     /** The stand-ins of each milestone, compiled once per class run (the same for its three submissions). */
     @TempDir
     static Path shared;
-    private static final Map<String, Map<String, String>> STAND_INS = new HashMap<>();
-
-    /** The milestone's stand-in classes from {@code sources}: compiled by its first case, reused by the others. */
-    private static synchronized Path standIns(String milestone, Map<String, String> sources) throws Exception {
-        Path out = shared.resolve("standins-" + milestone);
-        Map<String, String> before = STAND_INS.get(milestone);
-        if (before == null) {
-            StandIns.compile(sources, StudentProcessTest.classDirs(), out);
-            STAND_INS.put(milestone, Map.copyOf(sources));
-        } else {
-            assertEquals(before, sources, "the same stand-in sources for " + milestone);
-        }
-        return out;
-    }
+    private static final CompiledOnce STAND_INS = new CompiledOnce();
 
     private static int firstDifference(byte[] a, byte[] b) {
         int n = Math.min(a.length, b.length);
