@@ -28,6 +28,8 @@ import raylab.course.SolutionRegions;
  * Shadows.isShadowed, whose questions to the scene come back with their calls and are answered in
  * the next frame ({@link StudentProcess#multi}): shadow rays the lecture's way, code that catches
  * everything around the question, asks two or twenty questions one after the other, or throws.
+ * Each render (deterministic) and each compile is made once per class run and shared by the tests
+ * that compare with it: the reference one call at a time, and the sphere variants' batched renders.
  */
 class BatchedRenderTest {
     private static Path dir;
@@ -124,8 +126,7 @@ class BatchedRenderTest {
     @ValueSource(strings = {"reference", "lecture", "catchesEverything", "asksTwice", "asksTwenty", "throwsOnTheRight"})
     void shadowQuestionsAnsweredLaterGiveThePixelsOfOneCallAtATime(String student) throws Exception {
         Path studentClasses = dir.resolve("shadows-" + student);
-        StandIns.compile(Map.of("raylab/shading/Shadows.java", shadowVariant(student)), StudentProcessTest.classDirs(),
-                studentClasses);
+        compile(Map.of("raylab/shading/Shadows.java", shadowVariant(student)), studentClasses);
         Milestone m = new Milestone("raylab.shading.Shadows", shadowStandIns, shadowReferences, "scenes/shadows.json");
         Render batched = render(m, "shadows-" + student, studentClasses, true);
         Render single = render(m, "shadows-" + student, studentClasses, false);
@@ -163,8 +164,7 @@ class BatchedRenderTest {
     @ValueSource(strings = {"reference", "ignoresClosest", "plainQuadratic", "throwsOnTheRight"})
     void batchedPixelsAreThePixelsOfOneCallAtATime(String student) throws Exception {
         Path studentClasses = dir.resolve("student-" + student);
-        StandIns.compile(Map.of("raylab/surface/Sphere.java", variant(student)), StudentProcessTest.classDirs(),
-                studentClasses);
+        compile(Map.of("raylab/surface/Sphere.java", variant(student)), studentClasses);
         Render batched = render(sphere(), student, studentClasses, true);
         Render single = render(sphere(), student, studentClasses, false);
         assertSameAsOneCallAtATime(student, batched, single);
@@ -191,12 +191,10 @@ class BatchedRenderTest {
     @ValueSource(strings = {"reference", "ignoresClosest", "plainQuadratic"})
     void theFirstRoundsGiveTheReferenceImageWhateverTheStudentAnswers(String student) throws Exception {
         Path studentClasses = dir.resolve("student-" + student);
-        StandIns.compile(Map.of("raylab/surface/Sphere.java", variant(student)), StudentProcessTest.classDirs(),
-                studentClasses);
+        compile(Map.of("raylab/surface/Sphere.java", variant(student)), studentClasses);
         Render batched = render(sphere(), student, studentClasses, true);
         Path referenceClasses = dir.resolve("student-reference");
-        StandIns.compile(Map.of("raylab/surface/Sphere.java", variant("reference")), StudentProcessTest.classDirs(),
-                referenceClasses);
+        compile(Map.of("raylab/surface/Sphere.java", variant("reference")), referenceClasses);
         Render single = render(sphere(), "reference", referenceClasses, false);
         assertEquals("", batched.error(), "no error");
         assertTrue(batched.reference() != null, "the batched render of " + student + " leaves the reference image");
@@ -218,7 +216,32 @@ class BatchedRenderTest {
     private record Render(byte[] raw, String error, byte[] png, byte[] reference, String log) {
     }
 
-    private static Render render(Milestone m, String student, Path studentClasses, boolean batched) throws Exception {
+    /** The student classes compiled so far (each folder compiled once). */
+    private static final CompiledOnce COMPILED = new CompiledOnce();
+    /** The renders made so far, by what they render (each made once: several tests compare with the same one). */
+    private static final Map<List<Object>, Render> RENDERS = new java.util.HashMap<>();
+
+    /** The student's classes from {@code sources} into {@code out}, compiled once per class run. */
+    private static void compile(Map<String, String> sources, Path out) throws Exception {
+        COMPILED.compile(sources, out);
+    }
+
+    /**
+     * The render of {@code m} with the student's classes, batched or one call at a time: made once
+     * per class run (a render is deterministic; the tests that compare with the same render share it).
+     */
+    private static synchronized Render render(Milestone m, String student, Path studentClasses, boolean batched)
+            throws Exception {
+        List<Object> key = List.of(m, student, studentClasses, batched);
+        Render r = RENDERS.get(key);
+        if (r == null) {
+            r = renderNow(m, student, studentClasses, batched);
+            RENDERS.put(key, r);
+        }
+        return r;
+    }
+
+    private static Render renderNow(Milestone m, String student, Path studentClasses, boolean batched) throws Exception {
         Path root = Path.of(System.getProperty("raylab.grade.root", ".")).toAbsolutePath().normalize();
         Path out = dir.resolve(student + (batched ? "-batched" : "-single"));
         Files.createDirectories(out);

@@ -39,7 +39,7 @@ import raylab.remote.StudentServer;
  * submission (src/test/resources/submissions/forgers/, armed); the student process records every byte it receives
  * ({@link StudentServer#RECORD}), and the two recordings must be the same, byte for byte. A
  * value computed by the reference, or derived from its state, that reached the student's
- * process would differ.
+ * process would differ. A milestone's stand-ins are compiled once, for its three submissions.
  */
 class BoundaryDifferentialTest {
     private static final ObjectMapper JSON = new ObjectMapper();
@@ -118,8 +118,7 @@ class BoundaryDifferentialTest {
                 }
             }
         }
-        Path standIns = dir.resolve("standins");
-        StandIns.compile(standInSources, StudentProcessTest.classDirs(), standIns);
+        Path standIns = STAND_INS.compile(standInSources, shared.resolve("standins-" + milestone));
         Path student = dir.resolve("student");
         StandIns.compile(studentSources, StudentProcessTest.classDirs(), student);
         // The milestone's scenes at a tenth of their size, beside the meshes they name.
@@ -159,6 +158,11 @@ class BoundaryDifferentialTest {
                 + ": the bytes the student process received, with the reference as it is (expected) and perturbed"
                 + " (actual); first difference at byte " + firstDifference(plain.frames(), perturbed.frames()));
     }
+
+    /** The stand-ins of each milestone, compiled once per class run (the same for its three submissions). */
+    @TempDir
+    static Path shared;
+    private static final CompiledOnce STAND_INS = new CompiledOnce();
 
     private static int firstDifference(byte[] a, byte[] b) {
         int n = Math.min(a.length, b.length);

@@ -22,7 +22,9 @@ import com.fasterxml.jackson.databind.ObjectMapper;
  * alternative) graded beside CPU hogs (8 busy processes per core) and with the grader's own
  * answers slowed down ({@code -Draylab.boundary.slowGrader}) score exactly what they score on a
  * quiet machine with the same seed, test by test, with the default time limits, and the grading
- * does not fail. Each grading is a {@code raylab grade} process of its own, on the box milestone.
+ * does not fail. Each grading is a {@code raylab grade} process of its own, on the box milestone,
+ * with the grader's cache the test builds first; the two submissions are graded side by side, first
+ * quietly, then beside one set of hogs.
  */
 class GradingUnderLoadTest {
     static final ObjectMapper JSON = new ObjectMapper();
@@ -36,26 +38,57 @@ class GradingUnderLoadTest {
         Map<String, Path> subs = new LinkedHashMap<>();
         subs.put("reference", GraderTest.submission(dir, "reference"));
         subs.put("alternatives2", GraderTest.submission(dir, "alternatives2"));
-        for (Map.Entry<String, Path> e : subs.entrySet()) {
-            Map<String, Double> quiet = scores(grade(e.getValue(), "quiet-" + e.getKey(), Map.of()));
-            int hogs = 8 * Runtime.getRuntime().availableProcessors();
-            List<Process> busy = new ArrayList<>();
-            Map<String, Double> loaded;
-            long t0 = System.nanoTime();
-            try {
-                for (int i = 0; i < hogs; i++) {
-                    busy.add(new ProcessBuilder("sh", "-c", "while :; do :; done").start());
-                }
-                loaded = scores(grade(e.getValue(), "loaded-" + e.getKey(),
-                        Map.of("RAYLAB_TRUSTED_JVM_OPTS", "-Draylab.boundary.slowGrader=1")));
-            } finally {
-                for (Process b : busy) {
-                    b.destroyForcibly();
+        // The grader's cache (the box milestone) built once here, not by each grading.
+        GraderSetup.prepare(ROOT, List.of(raylab.course.Assignments.load(ROOT).byId("box").orElseThrow()),
+                dir.resolve("cache"), s -> { });
+        // The quiet gradings side by side (one core each), then the loaded ones side by side beside
+        // the same hogs: each loaded grading has the hogs' load and the other grading's besides.
+        Map<String, Map<String, Double>> quiet = gradeAll(subs, "quiet-", Map.of());
+        int hogs = 8 * Runtime.getRuntime().availableProcessors();
+        List<Process> busy = new ArrayList<>();
+        Map<String, Map<String, Double>> loaded;
+        long t0 = System.nanoTime();
+        try {
+            for (int i = 0; i < hogs; i++) {
+                busy.add(new ProcessBuilder("sh", "-c", "while :; do :; done").start());
+            }
+            loaded = gradeAll(subs, "loaded-", Map.of("RAYLAB_TRUSTED_JVM_OPTS", "-Draylab.boundary.slowGrader=1"));
+        } finally {
+            for (Process b : busy) {
+                b.destroyForcibly();
+            }
+        }
+        System.out.printf("GradingUnderLoadTest: %s graded side by side in %.0f s beside %d busy processes%n",
+                subs.keySet(), (System.nanoTime() - t0) / 1e9, hogs);
+        for (String sub : subs.keySet()) {
+            assertEquals(quiet.get(sub), loaded.get(sub), sub + ": every test and scene scores as on a quiet machine");
+        }
+    }
+
+    /** Each submission graded ({@link #grade}), all at the same time: their scores by submission. */
+    private Map<String, Map<String, Double>> gradeAll(Map<String, Path> subs, String prefix, Map<String, String> env)
+            throws Exception {
+        java.util.concurrent.ExecutorService pool = java.util.concurrent.Executors.newFixedThreadPool(subs.size());
+        try {
+            Map<String, java.util.concurrent.Future<JsonNode>> runs = new LinkedHashMap<>();
+            for (Map.Entry<String, Path> e : subs.entrySet()) {
+                runs.put(e.getKey(), pool.submit(() -> grade(e.getValue(), prefix + e.getKey(), env)));
+            }
+            Map<String, Map<String, Double>> out = new LinkedHashMap<>();
+            for (Map.Entry<String, java.util.concurrent.Future<JsonNode>> r : runs.entrySet()) {
+                try {
+                    out.put(r.getKey(), scores(r.getValue().get()));
+                } catch (java.util.concurrent.ExecutionException x) {
+                    // An assertion or error inside the grading, rethrown as it was.
+                    if (x.getCause() instanceof Exception ex) {
+                        throw ex;
+                    }
+                    throw (Error) x.getCause();
                 }
             }
-            System.out.printf("GradingUnderLoadTest: %s graded in %.0f s beside %d busy processes%n", e.getKey(),
-                    (System.nanoTime() - t0) / 1e9, hogs);
-            assertEquals(quiet, loaded, e.getKey() + ": every test and scene scores as on a quiet machine");
+            return out;
+        } finally {
+            pool.shutdownNow();
         }
     }
 

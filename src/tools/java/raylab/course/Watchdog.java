@@ -25,6 +25,7 @@ import java.util.function.Consumer;
  * of running, in wall time at {@link #WALL_TIMES} times the bound. Shared by {@code render},
  * {@code trace} and {@code check} (its renders and its tests); the grader's student process has a
  * watchdog of its own with the same bound and sentence ({@code raylab.remote.StudentServer}).
+ * The tests of the watchdog lower the floor with {@link #FLOOR_ENV}; nothing else sets it.
  */
 public final class Watchdog implements AutoCloseable {
     /** The shortest bound: no unit of work of the reference comes near it. */
@@ -52,10 +53,37 @@ public final class Watchdog implements AutoCloseable {
         thread.setDaemon(true);
     }
 
+    /**
+     * The environment variable that replaces {@link #FLOOR}, in milliseconds: a knob for the tests
+     * of the watchdog itself (raylab.cli.EndlessLoopTest), so that their loops are stopped after
+     * a fraction of a second of CPU time instead of 2 s. Unset (as everywhere but in those tests),
+     * or not a whole number of at least {@value #FLOOR_KNOB_MIN_MILLIS}, the floor is {@link #FLOOR}.
+     * Child processes inherit it ({@code check}'s test JVM); the grader passes its bound to the
+     * student process as an option ({@code raylab.remote.StudentServer#STUCK_AFTER}).
+     */
+    public static final String FLOOR_ENV = "RAYLAB_WATCHDOG_FLOOR_MS";
+    /** The smallest floor {@link #FLOOR_ENV} may set (ms): the watchdog looks every 100 ms. */
+    public static final long FLOOR_KNOB_MIN_MILLIS = 200;
+
+    /** The floor in force: {@link #FLOOR}, unless {@link #FLOOR_ENV} sets another. */
+    public static Duration floor() {
+        return floor(System.getenv(FLOOR_ENV));
+    }
+
+    /** The floor that {@code knob} (the value of {@link #FLOOR_ENV}, null if unset) sets. */
+    static Duration floor(String knob) {
+        if (knob == null || !knob.strip().matches("\\d{1,9}")) {
+            return FLOOR;
+        }
+        long ms = Long.parseLong(knob.strip());
+        return ms >= FLOOR_KNOB_MIN_MILLIS ? Duration.ofMillis(ms) : FLOOR;
+    }
+
     /** The bound for a unit of work whose reference time is {@code referenceMillis} (0 if unknown). */
     public static Duration bound(long referenceMillis) {
+        Duration floor = floor();
         Duration derived = Duration.ofMillis(Math.max(0, referenceMillis) * TIMES_REFERENCE);
-        return derived.compareTo(FLOOR) > 0 ? derived : FLOOR;
+        return derived.compareTo(floor) > 0 ? derived : floor;
     }
 
     /**
