@@ -136,16 +136,17 @@ final class GraderSetup {
 
     /**
      * Builds (or reuses from the cache) everything the grader needs for these milestones. A
-     * selection of some of the course's milestones uses the whole course's build when the cache
-     * holds it already (it holds every milestone's classes, tests and expected results), instead
-     * of building one of its own for that selection: one build serves every selection.
+     * selection of some of the course's milestones (or of all in another order) uses the whole
+     * course's build when the cache holds it already (it holds every milestone's classes, tests
+     * and expected results), instead of building one of its own: one build serves every selection.
      */
     static GraderSetup prepare(Path root, List<Assignment> milestones, Path cacheRoot, java.util.function.Consumer<String> log)
             throws IOException {
         List<Assignment> course = Assignments0.all(root);
-        java.util.Set<String> selected = new java.util.HashSet<>();
-        milestones.forEach(a -> selected.add(a.id()));
-        if (selected.size() < course.size() && course.stream().map(Assignment::id).toList().containsAll(selected)) {
+        List<String> courseIds = course.stream().map(Assignment::id).toList();
+        List<String> ids = milestones.stream().map(Assignment::id).toList();
+        // Some of the course's milestones, or all of them in another order (the build's key is the list).
+        if (!ids.equals(courseIds) && courseIds.containsAll(ids)) {
             GraderSetup whole = prepare(root, course, cacheRoot, log, false);
             if (whole != null) {
                 return whole.restrictedTo(milestones);
