@@ -15,6 +15,7 @@ import java.util.List;
 
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
+import org.junit.jupiter.api.extension.ExtendWith;
 
 import com.fasterxml.jackson.databind.JsonNode;
 import com.fasterxml.jackson.databind.ObjectMapper;
@@ -27,6 +28,7 @@ import raylab.cli.Main;
  * reference class of another milestone, no second Sphere, no hidden test, no grader class and
  * no reference image (it says what it found in every failing test's message).
  */
+@ExtendWith(SharedGraderCache.class)
 class BoundaryGradeTest {
     @TempDir
     Path dir;

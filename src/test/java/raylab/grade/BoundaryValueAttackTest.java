@@ -62,7 +62,7 @@ class BoundaryValueAttackTest {
             return; // -Dtest=BoundaryValueAttackTest#one: each test grades what it needs
         }
         // The shared cache built once here, not by the first two gradings at the same time.
-        GraderSetup.prepare(root, assignments.all(), root.resolve("target/grader-cache"), s -> { });
+        SharedGraderCache.whole(root);
         gradings.start(HONEST, BoundaryValueAttackTest::honestTwin);
         if (namespaces()) {
             gradings.start("namespace", () -> grade(true, "namespace", GraderTest.sandboxUser()));

@@ -18,6 +18,7 @@ import java.util.regex.Pattern;
 import org.junit.jupiter.api.io.TempDir;
 import org.junit.jupiter.params.ParameterizedTest;
 import org.junit.jupiter.params.provider.EnumSource;
+import org.junit.jupiter.api.extension.ExtendWith;
 
 import com.fasterxml.jackson.databind.JsonNode;
 import com.fasterxml.jackson.databind.ObjectMapper;
@@ -37,6 +38,7 @@ import raylab.course.SolutionRegions;
  * method becomes {@code return CONSTANT;} (a boolean for {@code intersect} and
  * {@code isShadowed}, a colour for {@code diffuse}, {@code specular} and {@code shade}).
  */
+@ExtendWith(SharedGraderCache.class)
 class ConstantStubsTest {
     static final ObjectMapper JSON = new ObjectMapper();
     private static final Pattern STUB = Pattern.compile("throw new NotImplemented\\(\"[\\w-]+\", \"(\\w+)\\.(\\w+)\"\\);");

@@ -21,6 +21,7 @@ import java.util.zip.ZipOutputStream;
 
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
+import org.junit.jupiter.api.extension.ExtendWith;
 
 import com.fasterxml.jackson.databind.JsonNode;
 import com.fasterxml.jackson.databind.ObjectMapper;
@@ -39,6 +40,7 @@ import raylab.course.SolutionRegions;
  * (grading is slow): every submission gets a row, the gradebook's cells are the sums of each
  * student's own results.json, and a second run grades only what is new or unfinished.
  */
+@ExtendWith(SharedGraderCache.class)
 class GradeAllTest {
     static final ObjectMapper JSON = new ObjectMapper();
 

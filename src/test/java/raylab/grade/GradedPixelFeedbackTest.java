@@ -11,6 +11,7 @@ import java.util.List;
 
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
+import org.junit.jupiter.api.extension.ExtendWith;
 
 import com.fasterxml.jackson.databind.JsonNode;
 
@@ -20,6 +21,7 @@ import com.fasterxml.jackson.databind.JsonNode;
  * message names the most common first difference (the planted mistake), and the students' HTML
  * (Gradescope's output) and report.html show the worst pixels' ray trees as static HTML, no script.
  */
+@ExtendWith(SharedGraderCache.class)
 class GradedPixelFeedbackTest {
     @TempDir
     Path dir;

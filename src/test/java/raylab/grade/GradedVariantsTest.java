@@ -17,6 +17,7 @@ import java.util.List;
 import org.junit.jupiter.api.BeforeAll;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
+import org.junit.jupiter.api.extension.ExtendWith;
 
 import com.fasterxml.jackson.databind.JsonNode;
 import com.fasterxml.jackson.databind.ObjectMapper;
@@ -31,6 +32,7 @@ import raylab.course.Assignments;
  * scores every variant; a buggy submission loses the same scenes on variants as on the published
  * scenes (RealisticBugsTest, with its own seed, is the published-scene side of the same bugs).
  */
+@ExtendWith(SharedGraderCache.class)
 class GradedVariantsTest {
     static final ObjectMapper JSON = new ObjectMapper();
     static Path root;

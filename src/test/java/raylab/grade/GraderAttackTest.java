@@ -88,7 +88,7 @@ class GraderAttackTest {
             return;
         }
         // The shared cache built once here, not by each of the first gradings at the same time.
-        GraderSetup.prepare(root, assignments.all(), root.resolve("target/grader-cache"), s -> { });
+        SharedGraderCache.whole(root);
         boolean ns = namespaces();
         boolean user = sandboxUserExists();
         String sandboxUser = GraderTest.sandboxUser();

@@ -24,6 +24,7 @@ import org.junit.jupiter.api.Order;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.TestMethodOrder;
 import org.junit.jupiter.api.io.TempDir;
+import org.junit.jupiter.api.extension.ExtendWith;
 
 import com.fasterxml.jackson.databind.JsonNode;
 import com.fasterxml.jackson.databind.ObjectMapper;
@@ -41,6 +42,7 @@ import raylab.course.SolutionRegions;
  * files in src/test/resources/submissions/NAME. Limits are kept small so the suite is quick.
  * The project root is the working directory, or the system property raylab.grade.root.
  */
+@ExtendWith(SharedGraderCache.class)
 @TestMethodOrder(MethodOrderer.OrderAnnotation.class)
 class GraderTest {
     static final ObjectMapper JSON = new ObjectMapper();

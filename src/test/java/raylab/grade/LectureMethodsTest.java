@@ -15,6 +15,7 @@ import java.util.List;
 import org.junit.jupiter.api.io.TempDir;
 import org.junit.jupiter.params.ParameterizedTest;
 import org.junit.jupiter.params.provider.CsvSource;
+import org.junit.jupiter.api.extension.ExtendWith;
 
 import com.fasterxml.jackson.databind.JsonNode;
 import com.fasterxml.jackson.databind.ObjectMapper;
@@ -29,6 +30,7 @@ import raylab.cli.Main;
  * are the reference), so a run takes one milestone's grading. A zero-point note (the slide's
  * shade() order traces shadow rays the plan could skip) is printed, and takes nothing.
  */
+@ExtendWith(SharedGraderCache.class)
 class LectureMethodsTest {
     static final ObjectMapper JSON = new ObjectMapper();
 

@@ -16,6 +16,7 @@ import org.junit.jupiter.api.BeforeAll;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.TestInstance;
 import org.junit.jupiter.api.io.TempDir;
+import org.junit.jupiter.api.extension.ExtendWith;
 
 import com.fasterxml.jackson.databind.JsonNode;
 import com.fasterxml.jackson.databind.ObjectMapper;
@@ -30,6 +31,7 @@ import com.fasterxml.jackson.databind.ObjectMapper;
  * same tests. Bugs are graded through {@code raylab grade}, several milestones per grading (at
  * most one bug per student file), only the milestones they belong to.
  */
+@ExtendWith(SharedGraderCache.class)
 @TestInstance(TestInstance.Lifecycle.PER_CLASS)
 class NoSilentLossTest {
     static final ObjectMapper JSON = new ObjectMapper();

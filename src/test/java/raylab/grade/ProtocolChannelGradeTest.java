@@ -16,6 +16,7 @@ import java.util.Set;
 import org.junit.jupiter.api.io.TempDir;
 import org.junit.jupiter.params.ParameterizedTest;
 import org.junit.jupiter.params.provider.ValueSource;
+import org.junit.jupiter.api.extension.ExtendWith;
 
 import com.fasterxml.jackson.databind.JsonNode;
 import com.fasterxml.jackson.databind.ObjectMapper;
@@ -33,6 +34,7 @@ import raylab.course.SolutionRegions;
  * thread") in its failure message, while the JVM's warning about the thread it could not start
  * goes to the stderr file (on standard output it was read as a broken protocol).
  */
+@ExtendWith(SharedGraderCache.class)
 class ProtocolChannelGradeTest {
     static final ObjectMapper JSON = new ObjectMapper();
     static final String INTERSECT = "public boolean intersect(IntersectionRecord outRecord, Ray ray) {";

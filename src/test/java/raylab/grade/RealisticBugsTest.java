@@ -16,6 +16,7 @@ import java.util.Map;
 import org.junit.jupiter.api.BeforeAll;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
+import org.junit.jupiter.api.extension.ExtendWith;
 
 import com.fasterxml.jackson.databind.JsonNode;
 import com.fasterxml.jackson.databind.ObjectMapper;
@@ -31,6 +32,7 @@ import raylab.course.Assignments;
  * stack. bugs4: a box that ignores tMax. (That every correct alternative keeps full marks with the
  * same tests and scenes is {@link GraderTest}'s part.)
  */
+@ExtendWith(SharedGraderCache.class)
 class RealisticBugsTest {
     static final ObjectMapper JSON = new ObjectMapper();
     static Path root;

@@ -137,9 +137,47 @@ final class GraderSetup {
         return s.substring(0, s.length() - ".java".length()).replace('/', '.');
     }
 
-    /** Builds (or reuses from the cache) everything the grader needs for these milestones. */
+    /**
+     * Builds (or reuses from the cache) everything the grader needs for these milestones. A
+     * selection of some of the course's milestones (or of all in another order) uses the whole
+     * course's build when the cache holds it already (it holds every milestone's classes, tests
+     * and expected results), instead of building one of its own: one build serves every selection.
+     */
     static GraderSetup prepare(Path root, List<Assignment> milestones, Path cacheRoot, java.util.function.Consumer<String> log)
             throws IOException {
+        List<Assignment> course = Assignments0.all(root);
+        List<String> courseIds = course.stream().map(Assignment::id).toList();
+        List<String> ids = milestones.stream().map(Assignment::id).toList();
+        // Some of the course's milestones, or all of them in another order (the build's key is the list).
+        if (!ids.equals(courseIds) && courseIds.containsAll(ids)) {
+            GraderSetup whole = prepare(root, course, cacheRoot, log, false);
+            if (whole != null) {
+                return whole.restrictedTo(milestones);
+            }
+        }
+        return prepare(root, milestones, cacheRoot, log, true);
+    }
+
+    /**
+     * This build for some of its milestones: their references, stand-ins, data cases, expected
+     * tests and problems; the test classes of every milestone stay listed (which of the cached
+     * classes are hidden, as in a grading of the whole course).
+     */
+    private GraderSetup restrictedTo(List<Assignment> milestones) throws IOException {
+        GraderSetup s = new GraderSetup(dir, libraries);
+        s.testClasses.putAll(testClasses);
+        for (Assignment a : milestones) {
+            s.cases.put(a.id(), cases.get(a.id()));
+            s.references.put(a.id(), references.get(a.id()));
+            s.standIns.put(a.id(), standIns.get(a.id()));
+        }
+        s.readExpected(dir.resolve("expected.json"), milestones);
+        return s;
+    }
+
+    /** As above for exactly these milestones; without {@code build}, null where the cache does not hold them. */
+    private static GraderSetup prepare(Path root, List<Assignment> milestones, Path cacheRoot,
+            java.util.function.Consumer<String> log, boolean build) throws IOException {
         Path code = codeSource();
         List<Path> libs = new ArrayList<>();
         for (Path p : GraderSetup.ownClassPath()) {
@@ -208,6 +246,9 @@ final class GraderSetup {
         if (CacheManifest.usable(dir, log)) { // verified against its hash manifest, else deleted and rebuilt
             s.readExpected(expectedFile, milestones);
             return s;
+        }
+        if (!build) {
+            return null;
         }
         log.accept("grader: building the grader's classes and listing the tests on the reference (cached in "
                 + dir + ")");
