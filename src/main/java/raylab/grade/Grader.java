@@ -501,11 +501,12 @@ public final class Grader {
         cmd.addAll(raylab.remote.StudentServer.CHANNEL_WRAPPER);
         cmd.addAll(List.of(JavaBuild.javaExecutable(),
                 raylab.remote.StudentServer.CHANNEL_JVM_OPTION, "-Xmx" + heapMb + "m",
-                "-Xss4m", "-XX:+UseSerialGC", "-XX:+ExitOnOutOfMemoryError", "-Djava.awt.headless=true",
+                "-Xss4m", "-XX:+ExitOnOutOfMemoryError", "-Djava.awt.headless=true",
                 "-XX:+DisableAttachMechanism", "-XX:-UsePerfData", "--limit-modules", TestLauncher.CHILD_MODULES,
-                // C1 only: at 0.5 CPU, C2's compiler threads cost more than its faster code saves,
-                // even in a render's hundreds of thousands of calls (grader/README.md).
-                "-XX:TieredStopAtLevel=1", "-Dfile.encoding=UTF-8"));
+                "-Dfile.encoding=UTF-8"));
+        // C1 only: at 0.5 CPU, C2's compiler threads cost more than its faster code saves,
+        // even in a render's hundreds of thousands of calls (grader/README.md).
+        cmd.addAll(JavaBuild.QUICK_JVM);
         cmd.addAll(JvmOptions.student(heapMb));
         cmd.addAll(extraJvmOptions("RAYLAB_STUDENT_JVM_OPTS"));
         cmd.addAll(List.of("-cp", String.join(java.io.File.pathSeparator, box.classPath()),
@@ -954,11 +955,11 @@ public final class Grader {
                 "-Xmx" + options.sceneHeapMb() + "m", "-XX:+ExitOnOutOfMemoryError", "-Djava.awt.headless=true",
                 // Grader code only: every module (--limit-modules would turn class data sharing off).
                 "-XX:+DisableAttachMechanism", "-XX:-UsePerfData",
-                // Quick to start: C1 only (a render of seconds pays C2's compile time back rarely).
-                "-XX:+UseSerialGC", "-XX:TieredStopAtLevel=1",
                 "-Draylab.boundary=" + config,
                 // The renders' limit in the student's CPU time; this JVM's wall clock below is only a guard.
                 "-Draylab.boundary.renderSeconds=" + options.sceneLimit().multipliedBy(a.scenes().size()).toSeconds()));
+        // Quick to start: C1 only (a render of seconds pays C2's compile time back rarely).
+        cmd.addAll(JavaBuild.QUICK_JVM);
         cmd.addAll(JvmOptions.trusted(options.sceneHeapMb()));
         cmd.addAll(extraJvmOptions("RAYLAB_RENDER_JVM_OPTS"));
         cmd.addAll(List.of(
