@@ -158,7 +158,8 @@ class PlatformBundlesIT {
         Files.createDirectories(g.resolve("data"));
         Files.writeString(g.resolve("student").resolve(file), text);
         Files.writeString(g.resolve("data/data.json"), "{\"params\": {}, \"correct_answers\": {}, \"submitted_answers\": {\"_files\": []}}");
-        FileTrees.copy(sfc, g.resolve("serverFilesCourse/raylab"));
+        // With the files' times, as PrairieLearn's every job has the course's files: the cache key holds the jar's time.
+        FileTrees.copy(sfc, g.resolve("serverFilesCourse/raylab"), java.nio.file.StandardCopyOption.COPY_ATTRIBUTES);
         List<String> cmd = new ArrayList<>(List.of("bash", entry[0].replace("/grade/", g + "/")));
         cmd.addAll(List.of(entry).subList(1, entry.length));
         Path log = dir.resolve("pl-" + name + ".log");

@@ -118,7 +118,9 @@ class PrairieLearnJobFolderIT {
         for (String d : List.of("serverFilesCourse", "tests", "student", "data")) {
             Files.createDirectories(job.resolve(d));
         }
-        FileTrees.copy(course.resolve("serverFilesCourse/raylab"), job.resolve("serverFilesCourse/raylab"));
+        // With the files' times, as PrairieLearn's every job has the course's files: the cache key holds the jar's time.
+        FileTrees.copy(course.resolve("serverFilesCourse/raylab"), job.resolve("serverFilesCourse/raylab"),
+                java.nio.file.StandardCopyOption.COPY_ATTRIBUTES);
         FileTrees.copy(job.resolve("serverFilesCourse"), job.resolve("shared"));
         Files.writeString(job.resolve("student/Box.java"), probe(root, grade, control));
         Files.writeString(job.resolve("data/data.json"),
