@@ -13,15 +13,19 @@ public final class FileTrees {
     private FileTrees() {
     }
 
-    /** Copies a folder and everything in it to {@code to} (created; files already there are not replaced). */
-    public static void copy(Path from, Path to) throws IOException {
+    /**
+     * Copies a folder and everything in it to {@code to} (created; files already there are not
+     * replaced), each file with {@code options} ({@code COPY_ATTRIBUTES} keeps its time, as a
+     * platform's copies of the same course files do).
+     */
+    public static void copy(Path from, Path to, java.nio.file.CopyOption... options) throws IOException {
         try (Stream<Path> s = Files.walk(from)) {
             for (Path p : (Iterable<Path>) s::iterator) {
                 Path t = to.resolve(from.relativize(p).toString());
                 if (Files.isDirectory(p)) {
                     Files.createDirectories(t);
                 } else {
-                    Files.copy(p, t);
+                    Files.copy(p, t, options);
                 }
             }
         }

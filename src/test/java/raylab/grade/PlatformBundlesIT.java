@@ -71,14 +71,9 @@ class PlatformBundlesIT {
     @Test
     void prairieLearnEntrypointGradesAGradeFolder() throws Exception {
         Path root = root();
-        Path jar = Path.of("target/raylab.jar").toAbsolutePath();
-        assertTrue(Files.isRegularFile(jar), "needs target/raylab.jar: run with ./mvnw verify, which packages it first");
         Files.setPosixFilePermissions(dir, java.nio.file.attribute.PosixFilePermissions.fromString("rwxr-xr-x"));
-        Path course = dir.resolve("course");
-        ByteArrayOutputStream err = new ByteArrayOutputStream();
-        assertEquals(0, Main.run(new PrintWriter(new ByteArrayOutputStream(), true), new PrintWriter(err, true),
-                "bundle", "prairielearn", "--out", course.toString(), "--root", root.toString(), "--jar", jar.toString()),
-                () -> "bundle: " + err);
+        // Built once for all the integration tests (ItBundles: the bundle command's self-check is a grading).
+        Path course = ItBundles.prairieLearn(root, Path.of("target/raylab.jar").toAbsolutePath());
         // One question per milestone, each uploading exactly its files.
         for (Assignment a : Assignments.load(root).all()) {
             Path q = course.resolve("questions/raylab").resolve(a.id());
@@ -147,15 +142,24 @@ class PlatformBundlesIT {
         assertFalse(broken.get("gradable").asBoolean(), () -> "a compile error: " + broken.get("message"));
     }
 
-    /** Lays out /grade (student, tests, serverFilesCourse, data) and runs the entrypoint the way info.json names it. */
+    /**
+     * Lays out /grade (student, tests, serverFilesCourse, data) and runs the entrypoint the way
+     * info.json names it. Each grading gets a new folder at the same path, as each PrairieLearn
+     * job gets a new /grade: the grader's cache, keyed by the files' paths, is then built once
+     * for the class's gradings instead of once each.
+     */
     private JsonNode gradePrairieLearn(Path sfc, String[] entry, String file, String text, String name) throws Exception {
-        Path g = dir.resolve("grade-" + name);
+        Path g = dir.resolve("grade");
+        if (Files.exists(g)) {
+            raylab.course.JavaBuild.deleteTree(g);
+        }
         Files.createDirectories(g.resolve("student"));
         Files.createDirectories(g.resolve("tests"));
         Files.createDirectories(g.resolve("data"));
         Files.writeString(g.resolve("student").resolve(file), text);
         Files.writeString(g.resolve("data/data.json"), "{\"params\": {}, \"correct_answers\": {}, \"submitted_answers\": {\"_files\": []}}");
-        FileTrees.copy(sfc, g.resolve("serverFilesCourse/raylab"));
+        // With the files' times, as PrairieLearn's every job has the course's files: the cache key holds the jar's time.
+        FileTrees.copy(sfc, g.resolve("serverFilesCourse/raylab"), java.nio.file.StandardCopyOption.COPY_ATTRIBUTES);
         List<String> cmd = new ArrayList<>(List.of("bash", entry[0].replace("/grade/", g + "/")));
         cmd.addAll(List.of(entry).subList(1, entry.length));
         Path log = dir.resolve("pl-" + name + ".log");

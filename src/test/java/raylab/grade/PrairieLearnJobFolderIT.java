@@ -4,8 +4,6 @@ import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 import static org.junit.jupiter.api.Assumptions.assumeTrue;
 
-import java.io.ByteArrayOutputStream;
-import java.io.PrintWriter;
 import java.nio.charset.StandardCharsets;
 import java.nio.file.Files;
 import java.nio.file.Path;
@@ -21,8 +19,8 @@ import org.junit.jupiter.api.io.TempDir;
 import org.junit.jupiter.params.ParameterizedTest;
 import org.junit.jupiter.params.provider.ValueSource;
 
-import raylab.cli.Main;
 import raylab.course.FileTrees;
+import raylab.course.JavaBuild;
 
 /**
  * Issue 35 item 9: on PrairieLearn nothing secret is reachable under /grade. The job folder is
@@ -40,6 +38,14 @@ import raylab.course.FileTrees;
 class PrairieLearnJobFolderIT {
     @TempDir
     Path dir;
+
+    /**
+     * Where both cases lay out the job's /grade and keep the grader's cache: the same path for
+     * each, as every PrairieLearn job has /grade, so that the cache (keyed by the files' paths)
+     * is built once. Each case makes /grade anew.
+     */
+    @TempDir
+    static Path jobs;
 
     static final String[] SECRETS = {"serverFilesCourse/raylab/raylab.jar", "shared/raylab/raylab.jar",
         "serverFilesCourse/raylab/grader/tests/raylab/surface/BoxHiddenTest.java",
@@ -95,25 +101,26 @@ class PrairieLearnJobFolderIT {
             assumeTrue(Sandbox.namespacesWork(true), "unshare cannot create namespaces here");
         }
         Path root = PlatformBundlesIT.root();
-        Path jar = Path.of("target/raylab.jar").toAbsolutePath();
-        assertTrue(Files.isRegularFile(jar), "needs target/raylab.jar: run with ./mvnw verify, which packages it first");
         Files.setPosixFilePermissions(dir, PosixFilePermissions.fromString("rwxr-xr-x"));
-        Path course = dir.resolve("course");
-        ByteArrayOutputStream err = new ByteArrayOutputStream();
-        assertEquals(0, Main.run(new PrintWriter(new ByteArrayOutputStream(), true), new PrintWriter(err, true),
-                "bundle", "prairielearn", "--out", course.toString(), "--root", root.toString(), "--jar", jar.toString()),
-                () -> "bundle: " + err);
+        Files.setPosixFilePermissions(jobs, PosixFilePermissions.fromString("rwxr-xr-x"));
+        // Built once for all the integration tests (ItBundles: the bundle command's self-check is a grading).
+        Path course = ItBundles.prairieLearn(root, Path.of("target/raylab.jar").toAbsolutePath());
 
         // The job folder as PrairieLearn's buildDirectory makes it, then packed and extracted as root.
         Path job = Files.createDirectories(dir.resolve("job"));
-        Path grade = dir.resolve("grade");
+        Path grade = jobs.resolve("grade");
+        if (Files.exists(grade)) {
+            JavaBuild.deleteTree(grade);
+        }
         Files.createDirectory(grade, PosixFilePermissions.asFileAttribute(PosixFilePermissions.fromString("rwx------")));
         // A file every sandbox mode leaves readable (namespace mode shows /etc, not /tmp).
         Path control = Path.of("/etc/passwd");
         for (String d : List.of("serverFilesCourse", "tests", "student", "data")) {
             Files.createDirectories(job.resolve(d));
         }
-        FileTrees.copy(course.resolve("serverFilesCourse/raylab"), job.resolve("serverFilesCourse/raylab"));
+        // With the files' times, as PrairieLearn's every job has the course's files: the cache key holds the jar's time.
+        FileTrees.copy(course.resolve("serverFilesCourse/raylab"), job.resolve("serverFilesCourse/raylab"),
+                java.nio.file.StandardCopyOption.COPY_ATTRIBUTES);
         FileTrees.copy(job.resolve("serverFilesCourse"), job.resolve("shared"));
         Files.writeString(job.resolve("student/Box.java"), probe(root, grade, control));
         Files.writeString(job.resolve("data/data.json"),
@@ -132,7 +139,7 @@ class PrairieLearnJobFolderIT {
 
         List<String> cmd = new ArrayList<>(List.of("bash", grade.resolve("serverFilesCourse/raylab/grade.sh").toString(), "box"));
         int status = PlatformBundlesIT.run(grade, Map.of("RAYLAB_GRADE_ROOT", grade.toString(),
-                "RAYLAB_CACHE", dir.resolve("cache").toString(), "RAYLAB_SANDBOX", mode), log, cmd.toArray(new String[0]));
+                "RAYLAB_CACHE", jobs.resolve("cache").toString(), "RAYLAB_SANDBOX", mode), log, cmd.toArray(new String[0]));
         assertEquals(0, status, () -> "entrypoint: " + PlatformBundlesIT.read(log));
         String json = Files.readString(grade.resolve("results/results.json"), StandardCharsets.UTF_8);
 

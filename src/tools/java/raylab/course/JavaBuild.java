@@ -182,6 +182,16 @@ public final class JavaBuild {
         }
     }
 
+    /**
+     * The JIT and collector of every short-lived child JVM raylab starts (a test JVM of
+     * {@code check} or of a grading, a trusted render, a student process, the grader itself):
+     * C1 only and one collector thread. Their runs are seconds long, so C2's compiler threads cost
+     * more CPU than its faster code saves (a whole grading with the trusted JVMs on C2 took twice
+     * their CPU; docs/testing.md, "S3"). The one place these are chosen; {@code raylab.grade.JvmOptions}
+     * adds the heap sizes of a grading's processes.
+     */
+    public static final List<String> QUICK_JVM = List.of("-XX:TieredStopAtLevel=1", "-XX:+UseSerialGC");
+
     /** The {@code java} launcher of the JDK this JVM runs on ({@code java.home/bin/java}), for child JVMs. */
     public static String javaExecutable() {
         return Path.of(System.getProperty("java.home"), "bin", "java").toString();

@@ -455,13 +455,14 @@ public final class MilestoneCheck {
         String java = JavaBuild.javaExecutable();
         Path png = root.resolve("out").resolve(baseName(g.scene()) + ".png");
         Files.createDirectories(png.getParent()); // render -o refuses a missing folder
-        List<String> cmd = List.of(java, "-Xmx1g", "-XX:+ExitOnOutOfMemoryError", "-Djava.awt.headless=true",
-                // a short run: the quick JIT alone and one GC thread cost less CPU than the full JIT
-                "-XX:TieredStopAtLevel=1", "-XX:+UseSerialGC", "-cp",
+        List<String> cmd = new ArrayList<>(List.of(java, "-Xmx1g", "-XX:+ExitOnOutOfMemoryError", "-Djava.awt.headless=true"));
+        // a short run: the quick JIT alone and one GC thread cost less CPU than the full JIT
+        cmd.addAll(JavaBuild.QUICK_JVM);
+        cmd.addAll(List.of("-cp",
                 String.join(File.pathSeparator, classPath.stream().map(Path::toString).toList()),
                 "raylab.cli.Main", "render", root.resolve(g.scene()).toString(), "-o", png.toString(),
                 "--compare", root.resolve(g.reference()).toString(), "--tolerance", Double.toString(g.tolerance()),
-                "--quiet", "--threads", Integer.toString(threads));
+                "--quiet", "--threads", Integer.toString(threads)));
         Path log = Files.createTempFile("raylab-check", ".log");
         try {
             Process p = new ProcessBuilder(cmd).directory(root.toFile()).redirectErrorStream(true)

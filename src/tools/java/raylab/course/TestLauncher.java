@@ -184,9 +184,9 @@ public final class TestLauncher {
         String java = JavaBuild.javaExecutable();
         List<String> cmd = new ArrayList<>(wrapper);
         cmd.add(java);
-        cmd.addAll(List.of("-Xmx" + limits.heapMegabytes() + "m", "-Xss1m",
-                "-XX:+UseSerialGC", "-XX:TieredStopAtLevel=1", "-Djava.awt.headless=true",
-                "-XX:+DisableAttachMechanism", "-XX:-UsePerfData"));
+        cmd.addAll(List.of("-Xmx" + limits.heapMegabytes() + "m", "-Xss1m"));
+        cmd.addAll(JavaBuild.QUICK_JVM);
+        cmd.addAll(List.of("-Djava.awt.headless=true", "-XX:+DisableAttachMechanism", "-XX:-UsePerfData"));
         cmd.addAll(jvmOptions); // after the defaults, so that they can change them
         if (limitModules) {
             cmd.addAll(List.of("--limit-modules", CHILD_MODULES));

@@ -98,11 +98,12 @@ record GradingRun(Grader.Options options, GraderSetup setup, Sandbox sandbox, Pa
         cmd.addAll(StudentServer.CHANNEL_WRAPPER);
         cmd.addAll(List.of(JavaBuild.javaExecutable(),
                 StudentServer.CHANNEL_JVM_OPTION, "-Xmx" + heapMb + "m",
-                "-Xss4m", "-XX:+UseSerialGC", "-XX:+ExitOnOutOfMemoryError", "-Djava.awt.headless=true",
+                "-Xss4m", "-XX:+ExitOnOutOfMemoryError", "-Djava.awt.headless=true",
                 "-XX:+DisableAttachMechanism", "-XX:-UsePerfData", "--limit-modules", TestLauncher.CHILD_MODULES,
-                // C1 only: at 0.5 CPU, C2's compiler threads cost more than its faster code saves,
-                // even in a render's hundreds of thousands of calls (grader/README.md).
-                "-XX:TieredStopAtLevel=1", "-Dfile.encoding=UTF-8"));
+                "-Dfile.encoding=UTF-8"));
+        // C1 only: at 0.5 CPU, C2's compiler threads cost more than its faster code saves,
+        // even in a render's hundreds of thousands of calls (grader/README.md).
+        cmd.addAll(JavaBuild.QUICK_JVM);
         cmd.addAll(JvmOptions.student(heapMb));
         cmd.addAll(extraJvmOptions("RAYLAB_STUDENT_JVM_OPTS"));
         cmd.addAll(List.of("-cp", String.join(java.io.File.pathSeparator, box.classPath()),

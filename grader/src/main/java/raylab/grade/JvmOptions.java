@@ -2,6 +2,8 @@ package raylab.grade;
 
 import java.util.List;
 
+import raylab.course.JavaBuild;
+
 /**
  * The JVM options of a grading's processes, chosen by measuring a whole grading in Gradescope's
  * default container (0.5 CPU, 768 MB: grader/README.md, "Gradescope's default container"). In
@@ -18,8 +20,8 @@ public final class JvmOptions {
      * {@code grader/cgroup-check.sh} start it with these): C1 only, one collector thread, room for
      * javac and the variants' checks.
      */
-    public static final List<String> GRADER = List.of("-XX:TieredStopAtLevel=1", "-XX:+UseSerialGC", "-Xms64m",
-            "-Xmn32m");
+    public static final List<String> GRADER = java.util.stream.Stream.concat(JavaBuild.QUICK_JVM.stream(),
+            java.util.stream.Stream.of("-Xms64m", "-Xmn32m")).toList();
 
     /** {@link #GRADER} as one line for a shell script. */
     public static String graderLine() {

@@ -120,11 +120,11 @@ final class SceneGrading {
                 "-Xmx" + options.sceneHeapMb() + "m", "-XX:+ExitOnOutOfMemoryError", "-Djava.awt.headless=true",
                 // Grader code only: every module (--limit-modules would turn class data sharing off).
                 "-XX:+DisableAttachMechanism", "-XX:-UsePerfData",
-                // Quick to start: C1 only (a render of seconds pays C2's compile time back rarely).
-                "-XX:+UseSerialGC", "-XX:TieredStopAtLevel=1",
                 "-Draylab.boundary=" + config,
                 // The renders' limit in the student's CPU time; this JVM's wall clock below is only a guard.
                 "-Draylab.boundary.renderSeconds=" + options.sceneLimit().multipliedBy(a.scenes().size()).toSeconds()));
+        // Quick to start: C1 only (a render of seconds pays C2's compile time back rarely).
+        cmd.addAll(JavaBuild.QUICK_JVM);
         cmd.addAll(JvmOptions.trusted(options.sceneHeapMb()));
         cmd.addAll(GradingRun.extraJvmOptions("RAYLAB_RENDER_JVM_OPTS"));
         cmd.addAll(List.of(
