@@ -16,21 +16,29 @@ import raylab.scene.Display;
  * @param ignored     submitted files that were not used, each with the reason
  * @param notes       general messages (setup problems, sandbox mode)
  * @param seconds     wall time of the grading
+ * @param cause       why the grading could not run, for the course staff ({@link Grader#failed}); null: it ran
  */
 public record GradeReport(List<Milestone> milestones, List<String> accepted, List<String> ignored,
-        List<String> notes, double seconds) {
+        List<String> notes, double seconds, String cause) {
     /** Every text that may hold a student's words made safe here, once for every output ({@link Display#text}). */
     public GradeReport {
         accepted = safe(accepted);
         ignored = safe(ignored);
         notes = safe(notes);
+        cause = Display.text(cause);
+    }
+
+    /** The report of a grading that ran. */
+    public GradeReport(List<Milestone> milestones, List<String> accepted, List<String> ignored, List<String> notes,
+            double seconds) {
+        this(milestones, accepted, ignored, notes, seconds, null);
     }
 
     private static List<String> safe(List<String> texts) {
         return texts.stream().map(Display::text).toList();
     }
 
-    /** The note that starts a report of a grading that could not run ({@link Grader#failed}). */
+    /** The start of the note that tells the course staff a grading, or a milestone's, could not run (its cause follows). */
     public static final String FAILED = "grading failed: ";
 
     /**
@@ -57,10 +65,13 @@ public record GradeReport(List<Milestone> milestones, List<String> accepted, Lis
      */
     public String failure() {
         List<String> causes = new java.util.ArrayList<>();
-        notes.stream().filter(n -> n.startsWith(FAILED)).forEach(n -> causes.add(n.substring(FAILED.length())));
+        if (cause != null) {
+            causes.add(cause);
+        }
         for (Milestone m : milestones) {
-            m.notes().stream().filter(n -> n.startsWith(FAILED))
-                    .forEach(n -> causes.add(m.id() + ": " + n.substring(FAILED.length())));
+            if (m.cause() != null) {
+                causes.add(m.id() + ": " + m.cause());
+            }
         }
         return causes.isEmpty() ? null : String.join("; ", causes);
     }
@@ -97,10 +108,20 @@ public record GradeReport(List<Milestone> milestones, List<String> accepted, Lis
         return Math.round(v * 100) / 100.0; // cents: every share is a whole number of cents
     }
 
-    /** One milestone's result. */
-    public record Milestone(String id, String title, List<String> notes, List<Test> tests) {
+    /**
+     * One milestone's result.
+     *
+     * @param cause why the course's setup could not grade it, for the course staff; null: graded
+     */
+    public record Milestone(String id, String title, List<String> notes, List<Test> tests, String cause) {
         public Milestone {
             notes = safe(notes);
+            cause = Display.text(cause);
+        }
+
+        /** A milestone that was graded. */
+        public Milestone(String id, String title, List<String> notes, List<Test> tests) {
+            this(id, title, notes, tests, null);
         }
 
         public double score() {

@@ -290,7 +290,7 @@ public final class Grader {
      * the reason for the course staff only.
      */
     public static GradeReport failed(String why, double seconds) {
-        return new GradeReport(List.of(), List.of(), List.of(), List.of(GradeReport.FAILED + why), seconds);
+        return new GradeReport(List.of(), List.of(), List.of(), List.of(GradeReport.FAILED + why), seconds, why);
     }
 
     /**
@@ -304,7 +304,8 @@ public final class Grader {
         String cannot = cannotGrade(run, a);
         if (cannot != null) {
             // The course's setup cannot grade this milestone: it fails, the others are graded.
-            return new GradeReport.Milestone(a.id(), a.title(), List.of(GradeReport.FAILED + cannot), List.of());
+            return new GradeReport.Milestone(a.id(), a.title(), List.of(GradeReport.FAILED + cannot), List.of(),
+                    cannot);
         }
         String absent = absentFiles(a, sub);
         if (absent != null) {
