@@ -96,7 +96,10 @@ public final class Batches {
         /** The grader's objects as the student process writes them back in a question. */
         Wire.Refs asStudent();
 
-        /** Sends {@code payload} as a frame of {@code type}; returns the reply of {@code replyType}, callbacks answered meanwhile. */
+        /**
+         * Sends {@code payload} as a frame of {@code type}; returns the reply of {@code replyType},
+         * callbacks answered meanwhile.
+         */
         Wire.In exchange(byte type, Wire.Out payload, byte replyType) throws IOException;
 
         /** An exception in a reply: class, message, frames. */

@@ -14,7 +14,8 @@ import raylab.scene.Display;
  * @param milestones  graded milestones in course order
  * @param accepted    submitted files that were graded ("src/main/java/raylab/surface/Sphere.java <- Sphere.java")
  * @param ignored     submitted files that were not used, each with the reason
- * @param notes       general messages, in the order they were written (setup problems, sandbox mode), for the course staff
+ * @param notes       general messages, in the order they were written (setup problems, sandbox mode), for
+ *                    the course staff
  * @param studentNotes those of the general notes a student may read, chosen where each was written: what the
  *                    submission caused; never the sandbox mode, the grader's setup, the grading seed, a variant
  *                    drawn again or not drawn, the cause of a failed grading
@@ -42,7 +43,7 @@ public record GradeReport(List<Milestone> milestones, List<String> accepted, Lis
         return texts.stream().map(Display::text).toList();
     }
 
-    /** The start of the note that tells the course staff a grading, or a milestone's, could not run (its cause follows). */
+    /** The start of the note that tells the course staff a grading, or a milestone's, could not run. */
     public static final String FAILED = "grading failed: ";
 
     /**
