@@ -3,6 +3,8 @@ import java.util.List;
 import java.util.Set;
 import java.nio.file.Path;
 
+import raylab.boundary.Batches;
+import raylab.boundary.StudentJvm;
 import raylab.boundary.StudentProcess;
 import raylab.math.Vec3;
 import raylab.ray.IntersectionRecord;
@@ -24,7 +26,7 @@ public class CallRate {
             dirs.add(Path.of(e).toAbsolutePath());
         }
         try (StudentProcess p = new StudentProcess(new StudentProcess.Config(
-                StudentProcess.javaCommand(dirs, 128, List.of()), null, Set.of("raylab.surface.Sphere"), 60_000, 1))) {
+                StudentJvm.javaCommand(dirs, 128, List.of()), null, Set.of("raylab.surface.Sphere"), 60_000, 1))) {
             Sphere s = new Sphere(new Vec3(0, 0, 3), 1, null, "ball");
             java.util.Random rnd = new java.util.Random(1);
             int n = 20_000;
@@ -69,9 +71,9 @@ public class CallRate {
     /** All rays as MULTI frames of {@code size} calls each. */
     private static void multi(StudentProcess p, Sphere s, Ray[] rays, int size) {
         for (int i = 0; i < rays.length; i += size) {
-            List<StudentProcess.MultiCall> batch = new ArrayList<>();
+            List<Batches.Call> batch = new ArrayList<>();
             for (int k = i; k < Math.min(rays.length, i + size); k++) {
-                batch.add(new StudentProcess.MultiCall("raylab.surface.Sphere", "intersect", s,
+                batch.add(new Batches.Call("raylab.surface.Sphere", "intersect", s,
                         new Object[] {new IntersectionRecord(), rays[k]}, List.of()));
             }
             p.multi(batch);

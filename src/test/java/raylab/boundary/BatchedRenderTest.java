@@ -249,7 +249,7 @@ class BatchedRenderTest {
         studentPath.add(studentClasses);
         studentPath.addAll(StudentProcessTest.classDirs());
         Path config = out.resolve("student.properties");
-        Remote.writeConfig(config, new StudentProcess.Config(StudentProcess.javaCommand(studentPath, 128,
+        Remote.writeConfig(config, new StudentProcess.Config(StudentJvm.javaCommand(studentPath, 128,
                 List.of(m.served())), null, Set.of(m.served()), 60_000, 1));
         List<String> cp = new ArrayList<>();
         cp.add(m.standIns().toString());

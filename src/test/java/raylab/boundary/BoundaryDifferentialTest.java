@@ -199,7 +199,7 @@ class BoundaryDifferentialTest {
         List<Path> studentPath = new ArrayList<>();
         studentPath.add(student);
         studentPath.addAll(StudentProcessTest.classDirs());
-        List<String> studentCmd = new ArrayList<>(StudentProcess.javaCommand(studentPath, 128, List.copyOf(served)));
+        List<String> studentCmd = new ArrayList<>(StudentJvm.javaCommand(studentPath, 128, List.copyOf(served)));
         Path frames = out.resolve("frames.bin");
         // After the java binary (the command may start with the channel's wrapper).
         int java = 0;

@@ -45,7 +45,7 @@ class BoundaryRenderTest {
         StandIns.compile(Map.of("raylab/surface/Sphere.java", standIn), classDirs, standIns);
 
         Path config = dir.resolve("student.properties");
-        Remote.writeConfig(config, new StudentProcess.Config(StudentProcess.javaCommand(classDirs, 128,
+        Remote.writeConfig(config, new StudentProcess.Config(StudentJvm.javaCommand(classDirs, 128,
                 List.of("raylab.surface.Sphere")), null, Set.of("raylab.surface.Sphere"), 60_000, 1));
         List<String> cp = new ArrayList<>();
         cp.add(standIns.toString());

@@ -20,7 +20,7 @@ import raylab.remote.StudentServer;
 class ProtocolChannelTest {
     @Test
     void rawWritesAndJvmLogsNeverReachTheProtocol() {
-        List<String> cmd = new ArrayList<>(StudentProcess.javaCommand(StudentProcessTest.classDirs(), 128,
+        List<String> cmd = new ArrayList<>(StudentJvm.javaCommand(StudentProcessTest.classDirs(), 128,
                 List.of("raylab.remote.Echo")));
         int jvm = StudentServer.CHANNEL_WRAPPER.size();
         assertEquals("java", java.nio.file.Path.of(cmd.get(jvm)).getFileName().toString(), "the JVM follows the wrapper: " + cmd);

@@ -54,7 +54,7 @@ class StudentProcessTest {
     }
 
     static StudentProcess start(long budgetMillis) {
-        return new StudentProcess(new StudentProcess.Config(StudentProcess.javaCommand(classDirs(), 128,
+        return new StudentProcess(new StudentProcess.Config(StudentJvm.javaCommand(classDirs(), 128,
                 List.of("raylab.remote.Echo")), null, SERVED, budgetMillis, 2));
     }
 

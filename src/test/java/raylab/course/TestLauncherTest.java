@@ -178,7 +178,7 @@ class TestLauncherTest {
         Path second = dir.resolve("second.properties");
         for (Path f : List.of(first, second)) {
             raylab.boundary.Remote.writeConfig(f, new raylab.boundary.StudentProcess.Config(
-                    raylab.boundary.StudentProcess.javaCommand(JavaBuild.ownClassPath(), 64, List.of()), null,
+                    raylab.boundary.StudentJvm.javaCommand(JavaBuild.ownClassPath(), 64, List.of()), null,
                     java.util.Set.of(), 10_000, 0));
         }
         List<TestResult> expected = TestLauncher.discover(classPath(classes), classes, List.of(),

@@ -121,7 +121,8 @@ class FailedGradingTest {
                         "scenes/spheres.json" + GradeReport.PUBLISHED_NOTE + "no variant of 8 kept its point (last: x);"
                                 + " narrow its \"variant\" bounds",
                         "scenes/boxes.json" + GradeReport.REDRAWN_NOTE + "3 times to keep its point",
-                        "STUDENT-NOTE the grader cache was changed while this submission was graded"), 2.0);
+                        "STUDENT-NOTE the grader cache was changed while this submission was graded"),
+                List.of("STUDENT-NOTE the grader cache was changed while this submission was graded"), 2.0, null);
     }
 
     @Test

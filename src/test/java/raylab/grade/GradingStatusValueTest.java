@@ -45,6 +45,26 @@ class GradingStatusValueTest {
     }
 
     @Test
+    void aFailedGradingIsTheCauseTheGraderCarriedNotANotesText() {
+        // A milestone note can quote the student's code or output: its text decides nothing.
+        GradeReport.Milestone quoted = new GradeReport.Milestone("sphere", "Sphere",
+                List.of(GradeReport.FAILED + "printed by the student"), List.of());
+        GradeReport graded = new GradeReport(List.of(quoted), List.of(), List.of(),
+                List.of(GradeReport.FAILED + "a general note of that text"), 1);
+        assertFalse(graded.failed(), () -> "no cause was carried, yet failure() = " + graded.failure());
+
+        GradeReport.Milestone cannot = new GradeReport.Milestone("box", "Box", List.of(GradeReport.FAILED + "no reference"),
+                List.of(), "no reference");
+        GradeReport oneMilestone = new GradeReport(List.of(quoted, cannot), List.of(), List.of(), List.of(), 1);
+        assertEquals("box: no reference", oneMilestone.failure());
+
+        GradeReport whole = Grader.failed("the hidden tests do not compile", 1);
+        assertTrue(whole.failed());
+        assertEquals("the hidden tests do not compile", whole.failure());
+        assertEquals(List.of(), whole.studentNotes(), "the cause is for the course staff only");
+    }
+
+    @Test
     void aRenderSaysItsGradingFailedWithAMarkerNotItsText(@TempDir Path dir) throws Exception {
         Path graders = dir.resolve("scene0.png");
         Files.writeString(Path.of(graders + ".err"), "the student process was killed twice");

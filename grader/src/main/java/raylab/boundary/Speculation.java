@@ -87,13 +87,13 @@ public final class Speculation {
         Wire.Key key;
         final Object self;
         final Object[] input;
-        final StudentProcess.MultiCall call;
+        final Batches.Call call;
         final Object result;
         final IntersectionRecord[] after;
         Answer answer;
         boolean confirmed;
 
-        Guess(Wire.Key key, Object self, Object[] input, StudentProcess.MultiCall call, Object result,
+        Guess(Wire.Key key, Object self, Object[] input, Batches.Call call, Object result,
                 IntersectionRecord[] after) {
             this.key = key;
             this.self = self;
@@ -277,7 +277,7 @@ public final class Speculation {
                 before[i] = x;
             }
         }
-        List<StudentProcess.Answered> answers = List.of();
+        List<Batches.Answered> answers = List.of();
         boolean complete = true;
         for (Object x : args) {
             if (x instanceof ShadingPoint at) {
@@ -290,7 +290,7 @@ public final class Speculation {
                 complete = g == guessesUsed;
             }
         }
-        Guess g = new Guess(k, self, before, new StudentProcess.MultiCall(cls, name, self, before, answers), result,
+        Guess g = new Guess(k, self, before, new Batches.Call(cls, name, self, before, answers), result,
                 after);
         if (complete) {
             guesses.add(g);
@@ -355,8 +355,8 @@ public final class Speculation {
      * which are given says nothing of what the reference would ask), each one only if no guess
      * went into it: then it is the framework's own answer, or rests on the student's own.
      */
-    private List<StudentProcess.Answered> answersFor(ShadingPoint at, List<PointLight> lights) {
-        List<StudentProcess.Answered> answers = new ArrayList<>();
+    private List<Batches.Answered> answersFor(ShadingPoint at, List<PointLight> lights) {
+        List<Batches.Answered> answers = new ArrayList<>();
         boolean looks = GraderObjects.hearsLooks(at);
         note(answers, at, Wire.OP_AMBIENT, new Object[0], at::ambient);
         for (PointLight light : lights) {
@@ -388,7 +388,7 @@ public final class Speculation {
         if (guesses.isEmpty()) {
             return;
         }
-        List<StudentProcess.MultiCall> batch = new ArrayList<>(guesses.size());
+        List<Batches.Call> batch = new ArrayList<>(guesses.size());
         for (Guess g : guesses) {
             batch.add(g.call);
         }
@@ -400,7 +400,7 @@ public final class Speculation {
             suspended = false;
         }
         for (Guess g : guesses) {
-            StudentProcess.MultiCall c = g.call;
+            Batches.Call c = g.call;
             g.answer = new Answer(c.result(), c.after(), c.thrown());
             g.confirmed = c.thrown() == null && same(g.result, c.result()) && sameRecords(g.after, c.after());
         }
@@ -568,7 +568,7 @@ public final class Speculation {
     }
 
     /** Notes the grader's answer to a question, unless a guess went into it. */
-    private <T> void note(List<StudentProcess.Answered> answers, Object target, byte op, Object[] args,
+    private <T> void note(List<Batches.Answered> answers, Object target, byte op, Object[] args,
             Asking<T> asking) {
         long g = guessesUsed;
         boolean was = pixel.unpredictable;
@@ -581,7 +581,7 @@ public final class Speculation {
             return;
         }
         if (g == guessesUsed) {
-            answers.add(new StudentProcess.Answered(target, op, args, result, new Object[args.length]));
+            answers.add(new Batches.Answered(target, op, args, result, new Object[args.length]));
         }
     }
 

@@ -14,23 +14,36 @@ import raylab.scene.Display;
  * @param milestones  graded milestones in course order
  * @param accepted    submitted files that were graded ("src/main/java/raylab/surface/Sphere.java <- Sphere.java")
  * @param ignored     submitted files that were not used, each with the reason
- * @param notes       general messages (setup problems, sandbox mode)
+ * @param notes       general messages, in the order they were written (setup problems, sandbox mode), for
+ *                    the course staff
+ * @param studentNotes those of the general notes a student may read, chosen where each was written: what the
+ *                    submission caused; never the sandbox mode, the grader's setup, the grading seed, a variant
+ *                    drawn again or not drawn, the cause of a failed grading
  * @param seconds     wall time of the grading
+ * @param cause       why the grading could not run, for the course staff ({@link Grader#failed}); null: it ran
  */
 public record GradeReport(List<Milestone> milestones, List<String> accepted, List<String> ignored,
-        List<String> notes, double seconds) {
+        List<String> notes, List<String> studentNotes, double seconds, String cause) {
     /** Every text that may hold a student's words made safe here, once for every output ({@link Display#text}). */
     public GradeReport {
         accepted = safe(accepted);
         ignored = safe(ignored);
         notes = safe(notes);
+        studentNotes = safe(studentNotes);
+        cause = Display.text(cause);
+    }
+
+    /** The report of a grading that ran, every general note one a student may read. */
+    public GradeReport(List<Milestone> milestones, List<String> accepted, List<String> ignored, List<String> notes,
+            double seconds) {
+        this(milestones, accepted, ignored, notes, notes, seconds, null);
     }
 
     private static List<String> safe(List<String> texts) {
         return texts.stream().map(Display::text).toList();
     }
 
-    /** The note that starts a report of a grading that could not run ({@link Grader#failed}). */
+    /** The start of the note that tells the course staff a grading, or a milestone's, could not run. */
     public static final String FAILED = "grading failed: ";
 
     /**
@@ -57,24 +70,15 @@ public record GradeReport(List<Milestone> milestones, List<String> accepted, Lis
      */
     public String failure() {
         List<String> causes = new java.util.ArrayList<>();
-        notes.stream().filter(n -> n.startsWith(FAILED)).forEach(n -> causes.add(n.substring(FAILED.length())));
+        if (cause != null) {
+            causes.add(cause);
+        }
         for (Milestone m : milestones) {
-            m.notes().stream().filter(n -> n.startsWith(FAILED))
-                    .forEach(n -> causes.add(m.id() + ": " + n.substring(FAILED.length())));
+            if (m.cause() != null) {
+                causes.add(m.id() + ": " + m.cause());
+            }
         }
         return causes.isEmpty() ? null : String.join("; ", causes);
-    }
-
-    /**
-     * Whether a general note is for the course staff only: the sandbox mode, the grader's setup,
-     * the grading seed of the scene variants, a variant drawn again or not drawn (which asks the
-     * instructor to narrow its bounds), and the cause of a failed grading. Students see the other
-     * notes: what their own submission caused.
-     */
-    public static boolean staffOnly(String note) {
-        return note.startsWith("sandbox") || note.startsWith("grader setup") || note.startsWith("grader:")
-                || note.startsWith(SEED_NOTE) || note.contains(PUBLISHED_NOTE) || note.contains(REDRAWN_NOTE)
-                || note.startsWith(FAILED);
     }
 
     /** The start of the note that names the grading seed. */
@@ -84,11 +88,6 @@ public record GradeReport(List<Milestone> milestones, List<String> accepted, Lis
     /** In the note of a scene whose variant was drawn more than once. */
     public static final String REDRAWN_NOTE = ": variant drawn ";
 
-    /** The general notes a student may read ({@link #staffOnly}). */
-    public List<String> studentNotes() {
-        return notes.stream().filter(n -> !staffOnly(n)).toList();
-    }
-
     public double maxScore() {
         return round(milestones.stream().mapToDouble(Milestone::maxScore).sum());
     }
@@ -97,10 +96,20 @@ public record GradeReport(List<Milestone> milestones, List<String> accepted, Lis
         return Math.round(v * 100) / 100.0; // cents: every share is a whole number of cents
     }
 
-    /** One milestone's result. */
-    public record Milestone(String id, String title, List<String> notes, List<Test> tests) {
+    /**
+     * One milestone's result.
+     *
+     * @param cause why the course's setup could not grade it, for the course staff; null: graded
+     */
+    public record Milestone(String id, String title, List<String> notes, List<Test> tests, String cause) {
         public Milestone {
             notes = safe(notes);
+            cause = Display.text(cause);
+        }
+
+        /** A milestone that was graded. */
+        public Milestone(String id, String title, List<String> notes, List<Test> tests) {
+            this(id, title, notes, tests, null);
         }
 
         public double score() {

@@ -108,7 +108,13 @@ public final class Grader {
         Assignments all = Assignments.load(root);
         List<Assignment> selected = selected(all);
         GradedScenes.validate(root, selected); // a bad variant spec stops the grading before anything runs
+        // Every general note for the course staff; those a student may read also in forStudents.
         List<String> notes = new ArrayList<>();
+        List<String> forStudents = new ArrayList<>();
+        Consumer<String> studentNote = n -> {
+            notes.add(n);
+            forStudents.add(n);
+        };
         Sandbox sandbox = Sandbox.detect(options.sandboxUser(), options.sandboxMode(), s -> {
             notes.add(s);
             log.accept(s);
@@ -121,7 +127,7 @@ public final class Grader {
         HiddenText hidden = HiddenText.of(setup, all.all());
         Map<String, byte[]> references = references(selected);
         Map<String, GradedScenes.Graded> graded = variants(root, selected, notes);
-        Submission sub = submission(submission, all, notes);
+        Submission sub = submission(submission, all, studentNote);
         List<String> accepted = new ArrayList<>();
         sub.files().keySet().forEach(k -> accepted.add(k + " <- " + sub.sources().get(k)));
         List<String> ignored = new ArrayList<>(sub.ignored());
@@ -136,11 +142,11 @@ public final class Grader {
         } finally {
             JavaBuild.deleteTreeQuietly(work);
             if (cacheGuard != null) {
-                cacheGuard.check().ifPresent(notes::add);
+                cacheGuard.check().ifPresent(studentNote);
             }
         }
-        return new GradeReport(List.copyOf(results.values()), accepted, ignored, notes,
-                (System.nanoTime() - t0) / 1e9);
+        return new GradeReport(List.copyOf(results.values()), accepted, ignored, notes, forStudents,
+                (System.nanoTime() - t0) / 1e9, null);
     }
 
     /** The milestones to grade (all when the options name none); a name that is none is an error. */
@@ -191,11 +197,11 @@ public final class Grader {
     }
 
     /** The submission's files; one that cannot be read is graded as empty, and the notes say why. */
-    private static Submission submission(Path submission, Assignments all, List<String> notes) {
+    private static Submission submission(Path submission, Assignments all, Consumer<String> studentNote) {
         try {
             return Submission.read(submission, all.all());
         } catch (IOException e) {
-            notes.add("the submission could not be read: " + e.getMessage());
+            studentNote.accept("the submission could not be read: " + e.getMessage());
             return Submission.unreadable(e.getMessage());
         }
     }
@@ -290,7 +296,8 @@ public final class Grader {
      * the reason for the course staff only.
      */
     public static GradeReport failed(String why, double seconds) {
-        return new GradeReport(List.of(), List.of(), List.of(), List.of(GradeReport.FAILED + why), seconds);
+        return new GradeReport(List.of(), List.of(), List.of(), List.of(GradeReport.FAILED + why), List.of(),
+                seconds, why);
     }
 
     /**
@@ -304,7 +311,8 @@ public final class Grader {
         String cannot = cannotGrade(run, a);
         if (cannot != null) {
             // The course's setup cannot grade this milestone: it fails, the others are graded.
-            return new GradeReport.Milestone(a.id(), a.title(), List.of(GradeReport.FAILED + cannot), List.of());
+            return new GradeReport.Milestone(a.id(), a.title(), List.of(GradeReport.FAILED + cannot), List.of(),
+                    cannot);
         }
         String absent = absentFiles(a, sub);
         if (absent != null) {

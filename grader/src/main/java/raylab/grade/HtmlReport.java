@@ -163,7 +163,8 @@ final class HtmlReport {
             b.append("</pre>\n");
         }
         // The sandbox mode, the grader's setup, the variants' seed and notes on their bounds are for
-        // instructors (GradeReport.staffOnly): the students' page holds what their code caused.
+        // instructors (not in GradeReport.studentNotes, chosen where the grader writes each note):
+        // the students' page holds what their code caused.
         for (String n : students ? r.studentNotes() : r.notes()) {
             b.append("<pre style=\"").append(PRE).append("\">").append(esc(n)).append("</pre>\n");
         }
