@@ -9,6 +9,7 @@ import java.util.EnumMap;
 import java.util.List;
 import java.util.Map;
 import java.util.Optional;
+import java.util.Set;
 import java.util.TreeSet;
 
 import org.junit.jupiter.api.BeforeAll;
@@ -75,22 +76,49 @@ class ModuleLinesTest {
 
     @Test
     void noModuleUsesAModuleAboveIt() {
-        TreeSet<String> violations = new TreeSet<>();
-        for (JavaClass c : classes) {
-            Module from = MODULE_OF.get(c.getName());
+        TreeSet<String> violations = violations(classes, MODULE_OF);
+        assertEquals("", String.join("\n", violations),
+                "dependencies across the module lines in the wrong direction (docs/architecture.md): "
+                        + violations.size());
+    }
+
+    /** A class that, were it in the lab, would use the tools: the check must find it. */
+    static final class PlantedInTheLab {
+        static String main() {
+            return raylab.cli.Main.class.getName();
+        }
+    }
+
+    @Test
+    void theCheckFindsAPlantedUpwardDependency() {
+        JavaClasses planted = new ClassFileImporter().importClasses(PlantedInTheLab.class, raylab.cli.Main.class);
+        Map<String, Module> modules = Map.of(PlantedInTheLab.class.getName(), Module.LAB,
+                raylab.cli.Main.class.getName(), Module.TOOLS);
+        TreeSet<String> found = violations(planted, modules);
+        assertEquals(1, found.size(), "one upward dependency: " + found);
+        assertTrue(found.first().startsWith("LAB -> TOOLS: ") && found.first().contains("raylab.cli.Main")
+                && found.first().contains("ModuleLinesTest.java:"), found.first());
+        // The other way round is allowed: the tools may use the lab.
+        assertEquals(Set.of(), violations(planted, Map.of(PlantedInTheLab.class.getName(), Module.TOOLS,
+                raylab.cli.Main.class.getName(), Module.LAB)));
+    }
+
+    /** Each dependency of a class on a module its own may not use, described with its line. */
+    private static TreeSet<String> violations(JavaClasses of, Map<String, Module> moduleOf) {
+        TreeSet<String> out = new TreeSet<>();
+        for (JavaClass c : of) {
+            Module from = moduleOf.get(c.getName());
             if (from == null) {
                 continue;
             }
             for (Dependency d : c.getDirectDependenciesFromSelf()) {
-                Module to = MODULE_OF.get(d.getTargetClass().getBaseComponentType().getName());
+                Module to = moduleOf.get(d.getTargetClass().getBaseComponentType().getName());
                 if (to != null && !from.mayUse().contains(to)) {
-                    violations.add(from + " -> " + to + ": " + d.getDescription());
+                    out.add(from + " -> " + to + ": " + d.getDescription());
                 }
             }
         }
-        assertEquals("", String.join("\n", violations),
-                "dependencies across the module lines in the wrong direction (docs/architecture.md): "
-                        + violations.size());
+        return out;
     }
 
     @Test
