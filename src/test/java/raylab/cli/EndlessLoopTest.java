@@ -40,9 +40,9 @@ import raylab.course.Watchdog;
  * a tile, a pixel, a call or a visible test in far less) instead of the old 300 s of a render or
  * 10 s of each test. Each command runs in a JVM of its own with the looping file compiled first on
  * the class path (the grader: in the submission, one grading for the first method of each
- * milestone together and one for the others). The runs go three at a time,
- * each {@code check} after the one before (they share target/check) and each grading after the
- * one before (they share the grader's cache).
+ * milestone together and one for the others). The runs go four at a time, each {@code check}
+ * after the one before (they share target/check), the gradings side by side over the grader's
+ * cache built before them.
  *
  * <p>The loops are stopped after {@link #FLOOR_MILLIS} of CPU time instead of the production
  * floor of 2 s: every command runs with the test knob {@link Watchdog#FLOOR_ENV} set (its child
@@ -83,7 +83,9 @@ class EndlessLoopTest {
                     JavaBuild.ownClassPath(), dir.resolve(e.getKey()));
             assertTrue(r.success(), e.getKey() + ": " + r.errors());
         }
-        pool = Executors.newFixedThreadPool(3);
+        // The grader's cache built once here, so that the gradings can run side by side.
+        raylab.grade.SharedGraderCache.build(ROOT);
+        pool = Executors.newFixedThreadPool(4);
     }
 
     @AfterAll
@@ -198,7 +200,6 @@ class EndlessLoopTest {
             }
         }
         Path results = dir.resolve("results-" + name);
-        // The first grading may build the grader's cache (the tests run on the reference): a longer guard.
         Ran r = run(null, 900, "grade", sub.toString(), "--out", results.toString(), "--root", ROOT.toString(), "--quiet",
                 "--sandbox-user", "", "--seed", "7");
         Path json = results.resolve("results.json");
@@ -232,16 +233,14 @@ class EndlessLoopTest {
             }
             return null;
         });
-        // The gradings one after the other too: the first builds the grader's cache, the next reuse it.
-        Map<String, Ran> grades = new java.util.concurrent.ConcurrentHashMap<>();
-        Future<?> grading = pool.submit(() -> {
-            int n = 0;
-            for (List<String> methods : gradings()) {
-                Ran r = grade("g" + ++n, methods);
-                methods.forEach(m -> grades.put(m, r));
-            }
-            return null;
-        });
+        // The gradings side by side, over the cache built before them.
+        Map<String, Future<Ran>> grades = new java.util.concurrent.ConcurrentHashMap<>();
+        int n = 0;
+        for (List<String> methods : gradings()) {
+            String name = "g" + ++n;
+            Future<Ran> r = pool.submit(() -> grade(name, methods));
+            methods.forEach(m -> grades.put(m, r));
+        }
         String watched = FILE.keySet().iterator().next();
         Future<String> watching = pool.submit(() -> renderWatch(watched));
         for (String method : FILE.keySet()) {
@@ -282,8 +281,7 @@ class EndlessLoopTest {
                 }
             }));
             tests.add(DynamicTest.dynamicTest("the grader stops and names " + method, () -> {
-                grading.get();
-                Ran r = grades.get(method);
+                Ran r = grades.get(method).get();
                 assertEquals(0, r.status(), "exit status; stderr: " + r.err());
                 assertNamed(method, r.out());
                 assertTrue(r.out().contains("\"score\""), "graded: " + r.out());

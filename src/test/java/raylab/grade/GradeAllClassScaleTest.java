@@ -56,24 +56,6 @@ class GradeAllClassScaleTest {
                 + System.getProperty("java.class.path") + " raylab.cli.Main";
     }
 
-    /**
-     * A grader cache folder ready for these grade-alls: the whole course's build in the shared
-     * cache ({@link SharedGraderCache}, made there once per build if no class made it before),
-     * copied into {@code cacheRoot}, where a grading of the box milestone uses it
-     * ({@link GraderSetup#prepare}). The grade-alls here keep caches of their own (the shards'
-     * default {@code OUT/.cache/shard-K}; the killed runs' boxes under their own {@code work/}),
-     * but none builds one: a build is CPU (compiling the grader's tests, running them on the
-     * reference), and a kill during a build only meant another build. The cache's build and its
-     * checks are tested elsewhere ({@code CacheManifestTest}, {@code GraderAttackTest}).
-     */
-    static void seedCache(Path cacheRoot) throws IOException {
-        GraderSetup built = SharedGraderCache.whole(ROOT);
-        Path to = cacheRoot.resolve(built.dir.getFileName().toString());
-        FileTrees.copy(built.dir, to);
-        Sandbox.readableByAll(to);
-        Sandbox.privateFolder(to);
-    }
-
     /** A class of six: the reference, two realistic bugs, a compile error, an empty folder, a broken zip. */
     private Map<String, Double> classOfSix(Path subs) throws Exception {
         Map<String, Double> expected = new LinkedHashMap<>(); // box points where known exactly; NaN: below 15
@@ -119,8 +101,8 @@ class GradeAllClassScaleTest {
         Files.copy(cluster.resolve("grade-all.sbatch"), spool.resolve("slurm_script"));
         Map<String, String> common = Map.of("SUBMISSIONS", subs.toString(), "OUT", out.toString(), "RAYLAB", raylab());
         // Each shard's own cache, where the job files put it (RAYLAB_CACHE unset), already built.
-        seedCache(out.resolve(".cache/shard-1"));
-        seedCache(out.resolve(".cache/shard-2"));
+        SharedGraderCache.seed(out.resolve(".cache/shard-1"));
+        SharedGraderCache.seed(out.resolve(".cache/shard-2"));
         Map<String, String> slurm = new LinkedHashMap<>(common);
         slurm.putAll(Map.of("SLURM_ARRAY_TASK_ID", "1", "SLURM_ARRAY_TASK_MIN", "1", "SLURM_ARRAY_TASK_COUNT", "2",
                 "SLURM_SUBMIT_DIR", ROOT.toString()));
@@ -182,7 +164,7 @@ class GradeAllClassScaleTest {
         cmd.addAll(List.of("grade-all", subs.toString(), "--out", out.toString(), "--root", ROOT.toString(),
                 "--cache", dir.resolve("cache").toString()));
         cmd.addAll(OPTIONS);
-        seedCache(dir.resolve("cache"));
+        SharedGraderCache.seed(dir.resolve("cache"));
         int kills = 0;
         for (int round = 0; round < 3; round++) {
             Process p = start(cmd, Map.of(), dir.resolve("run" + round + ".log"));

@@ -145,6 +145,9 @@ class GraderAttackTest {
         // Mode none: the attack writes into every cache folder it can reach (it is not isolated
         // there), so a cache of its own; no other test's cache is poisoned by it.
         Path cache = root.resolve(mode.equals("none") ? "target/grader-cache-attack-none" : "target/grader-cache");
+        if (mode.equals("none")) {
+            SharedGraderCache.seed(cache); // a copy of the shared build, not a build of its own
+        }
         Path dir = Files.createDirectories(attackDir.resolve("tag-" + tag));
         Path out = Files.createDirectories(dir.resolve("out-" + mode));
         Path sub = Files.createDirectories(dir.resolve("sub-" + mode));
@@ -177,7 +180,7 @@ class GraderAttackTest {
             // far): a short scene limit keeps the wait for their time-out short. The renders are not
             // what these tests check.
             String[] base = {"grade", sub.toString(), "--out", out.toString(), "--root", root.toString(), "--quiet",
-                "--test-timeout", "5", "--milestone-timeout", "60", "--scene-timeout", "5", "--heap", "256",
+                "--test-timeout", "5", "--milestone-timeout", "60", "--scene-timeout", "2", "--heap", "256",
                 "--milestone", "sphere", "--sandbox", mode, "--sandbox-user", user, "--cache", cache.toString(),
                 "--prairielearn", out.resolveSibling(out.getFileName() + "-pl.json").toString()};
             String[] args = base;
@@ -372,6 +375,9 @@ class GraderAttackTest {
             Path cache = root.resolve(mode.equals("none")
                     ? "target/grader-cache-none-" + (attacks.equals(SUBMISSION_A) ? "a" : attacks.equals(SUBMISSION_B) ? "b" : "other")
                     : "target/grader-cache");
+            if (mode.equals("none")) {
+                SharedGraderCache.seed(cache); // a copy of the shared build, not a build of its own
+            }
             Path out = Files.createDirectories(work.resolve("out"));
             Path sub = Files.createDirectories(work.resolve("sub"));
             Set<String> all = new java.util.TreeSet<>(assignments.ids());
@@ -395,14 +401,22 @@ class GraderAttackTest {
             }
             ByteArrayOutputStream err = new ByteArrayOutputStream();
             // The attacked milestones' renders run until their time-out (the sphere prints every ray
-            // it sees), spending the student's CPU budget of every scene: 10 s a scene, not the
-            // default 60 (the budget is the student's CPU time, so load does not shorten it); the
-            // reference milestones' renders take a few seconds of it. No test here is about that
-            // time-out: it only burned CPU (docs/testing.md).
-            int status = Main.run(new PrintWriter(new ByteArrayOutputStream(), true),
-                    new PrintWriter(err, true, StandardCharsets.UTF_8), "grade", sub.toString(), "--out", out.toString(),
+            // it sees), spending the student's CPU budget of every call: 3 s, not the default 60
+            // (the budget is the student's CPU time, so load does not shorten it). A render of the
+            // reference milestones is batches of a few milliseconds each (its slowest scene, mesh,
+            // about 0.9 s of student CPU in all). No test here is about that time-out: it only
+            // burned CPU (docs/testing.md).
+            List<String> args = new java.util.ArrayList<>(List.of("grade", sub.toString(), "--out", out.toString(),
                     "--root", root.toString(), "--quiet", "--test-timeout", "10", "--milestone-timeout", "120",
-                    "--scene-timeout", "10", "--heap", "256", "--sandbox", mode, "--sandbox-user", user, "--cache", cache.toString());
+                    "--scene-timeout", "3", "--heap", "256", "--sandbox", mode, "--sandbox-user", user, "--cache",
+                    cache.toString()));
+            // A disarmed twin is only compared on its attacked milestones: it grades only those.
+            for (String m : armed ? List.<String>of() : milestonesOf(attacks)) {
+                args.add("--milestone");
+                args.add(m);
+            }
+            int status = Main.run(new PrintWriter(new ByteArrayOutputStream(), true),
+                    new PrintWriter(err, true, StandardCharsets.UTF_8), args.toArray(String[]::new));
             assertEquals(0, status, () -> "graded: " + err);
             Thread.sleep(4_500); // past the detached forger's 4 s
             JsonNode r = JSON.readTree(out.resolve("results.json").toFile());

@@ -19,11 +19,11 @@ import com.fasterxml.jackson.databind.ObjectMapper;
 
 /**
  * Load is never the student's fault: correct submissions (the reference and a correct
- * alternative) graded beside CPU hogs (8 busy processes per core) and with the grader's own
+ * alternative) graded beside CPU hogs (4 busy processes per core) and with the grader's own
  * answers slowed down ({@code -Draylab.boundary.slowGrader}) score exactly what they score on a
  * quiet machine with the same seed, test by test, with the default time limits, and the grading
  * does not fail. Each grading is a {@code raylab grade} process of its own, on the box milestone,
- * with the grader's cache the test builds first; the two submissions are graded side by side, first
+ * with a grader cache of its own (a copy of the shared build); the two submissions are graded side by side, first
  * quietly, then beside one set of hogs.
  */
 class GradingUnderLoadTest {
@@ -38,13 +38,12 @@ class GradingUnderLoadTest {
         Map<String, Path> subs = new LinkedHashMap<>();
         subs.put("reference", GraderTest.submission(dir, "reference"));
         subs.put("alternatives2", GraderTest.submission(dir, "alternatives2"));
-        // The grader's cache (the box milestone) built once here, not by each grading.
-        GraderSetup.prepare(ROOT, List.of(raylab.course.Assignments.load(ROOT).byId("box").orElseThrow()),
-                dir.resolve("cache"), s -> { });
+        // The grader's cache ready here (a copy of the shared build), not built by each grading.
+        SharedGraderCache.seed(dir.resolve("cache"));
         // The quiet gradings side by side (one core each), then the loaded ones side by side beside
         // the same hogs: each loaded grading has the hogs' load and the other grading's besides.
         Map<String, Map<String, Double>> quiet = gradeAll(subs, "quiet-", Map.of());
-        int hogs = 8 * Runtime.getRuntime().availableProcessors();
+        int hogs = 4 * Runtime.getRuntime().availableProcessors();
         List<Process> busy = new ArrayList<>();
         Map<String, Map<String, Double>> loaded;
         long t0 = System.nanoTime();

@@ -19,8 +19,9 @@ import raylab.cli.Main;
 import raylab.course.Assignments;
 
 /**
- * The PrairieLearn bundle the integration tests grade with, built once per run and shared: each
- * build runs the course's self-check (a whole grading of the reference with a new cache), and
+ * The PrairieLearn bundle the integration tests grade with, built once per run and shared: a
+ * build is the course's self-check (a whole grading of the reference with a new cache; the other
+ * platforms' bundles of the same files find it passed, {@link PassedChecks}) and the bundle, and
  * {@code PlatformBundlesIT} and both cases of {@code PrairieLearnJobFolderIT} bundled the same
  * files with the same jar three times. Built under {@code target/it-bundles/}, named by a digest
  * of the jar and of every file the bundle takes ({@link BundleCommand#graderFiles}), under a file

@@ -17,7 +17,7 @@ import raylab.course.Assignments;
  * in a temporary folder and moved into place). A grading class takes it with
  * {@code @ExtendWith(SharedGraderCache.class)}: before its tests, the build is there.
  */
-final class SharedGraderCache implements BeforeAllCallback {
+public final class SharedGraderCache implements BeforeAllCallback {
     @Override
     public void beforeAll(ExtensionContext context) throws IOException {
         whole(root());
@@ -31,6 +31,32 @@ final class SharedGraderCache implements BeforeAllCallback {
     /** The shared cache folder of this root. */
     static Path folder(Path root) {
         return root.resolve("target/grader-cache");
+    }
+
+    /**
+     * {@link #whole} for a class outside this package that runs {@code raylab grade} with the
+     * default cache, before its gradings run side by side.
+     */
+    public static void build(Path root) throws IOException {
+        whole(root);
+    }
+
+    /**
+     * A grader cache folder of its own, ready: the whole course's build in the shared cache (made
+     * there once per build if no class made it before) copied into {@code cacheRoot} (over a copy
+     * a run before left there), where a grading of any milestones uses it
+     * ({@link GraderSetup#prepare}). For gradings that must not share the cache (mode none
+     * poisons the one it grades with; grade-all's shards keep their own) and need not test its
+     * build: a build is CPU (compiling the grader's tests, running them on the reference). The
+     * build and its checks are tested elsewhere ({@code CacheManifestTest}, {@code CourseCheckTest}).
+     */
+    static void seed(Path cacheRoot) throws IOException {
+        GraderSetup built = whole(root());
+        Path to = cacheRoot.resolve(built.dir.getFileName().toString());
+        raylab.course.JavaBuild.deleteTreeQuietly(to);
+        raylab.course.FileTrees.copy(built.dir, to);
+        Sandbox.readableByAll(to);
+        Sandbox.privateFolder(to);
     }
 
     /** The whole course's build in the shared cache: made if no grading made it before, else verified. */

@@ -231,8 +231,19 @@ public final class BundleCommand implements Callable<Integer>, OptionalCommand {
     /**
      * The course's self-check ({@link CourseCheck}) on a copy of exactly the files the bundle
      * holds: one line per problem on standard error, and a refusal (exit status 1) when there is any.
+     * A check that passed before on the same files with the same raylab and JDK is not run again
+     * ({@link PassedChecks}); standard error says so, and which record to delete to run it.
      */
     private void selfCheck(Path r, List<Path> files) throws IOException {
+        java.io.PrintWriter err = spec.commandLine().getErr();
+        Path record = PassedChecks.record(r, files);
+        java.util.Optional<String> passed = PassedChecks.passedOn(record);
+        if (passed.isPresent()) {
+            err.println("raylab: the course's self-check passed on exactly these files with this raylab and JDK at "
+                    + passed.get() + ": not run again (delete " + r.relativize(record) + " to run it)");
+            err.flush();
+            return;
+        }
         Path staged = Files.createTempDirectory("raylab-bundle-check");
         try {
             for (Path f : files) {
@@ -243,13 +254,18 @@ public final class BundleCommand implements Callable<Integer>, OptionalCommand {
             Grader.Options o = Grader.Options.defaults(staged);
             o = new Grader.Options(staged, o.milestones(), o.limits(), o.sceneLimit(), o.sceneHeapMb(),
                     staged.resolve("target/grader-cache"), o.sandboxUser(), o.parallel(), o.sandboxMode());
-            java.io.PrintWriter err = spec.commandLine().getErr();
             err.println("raylab: checking the course with the bundle's own files (raylab self-check; takes a few minutes)");
             err.flush();
             List<String> problems = CourseCheck.problems(staged, List.of(), o, s -> { });
             if (SelfCheckCommand.report(problems, err) != 0) {
                 throw new UserError(problems.size() + " course problem" + (problems.size() == 1 ? "" : "s")
                         + " (above): nothing was written to " + out, 1);
+            }
+            try {
+                PassedChecks.remember(record);
+            } catch (IOException e) {
+                err.println("raylab: the check passed, but could not be recorded (" + e.getMessage()
+                        + "): the next bundle checks again");
             }
         } finally {
             JavaBuild.deleteTreeQuietly(staged);
