@@ -91,6 +91,7 @@ class EndlessLoopTest {
     @AfterAll
     static void stop() {
         pool.shutdownNow();
+        JavaBuild.deleteTreeQuietly(dir); // the overlays, the submissions and the runs' outputs
     }
 
     /** What a run of raylab said: exit status, standard output, standard error. */

@@ -403,7 +403,7 @@ public final class TestMain {
                 text = e instanceof GraderFault ? text : e.getClass().getSimpleName() + ": " + text;
                 StackTraceElement[] st = e.getStackTrace();
                 for (StackTraceElement el : st) {
-                    if (el.getClassName().startsWith("raylab.")) {
+                    if (el.getClassName().startsWith("raylab.") && !isMachinery(el.getClassName())) {
                         text += " (at " + el.getClassName() + "." + el.getMethodName() + ":" + el.getLineNumber() + ")";
                         break;
                     }
@@ -411,6 +411,19 @@ public final class TestMain {
             }
             return text.length() > 2000 ? text.substring(0, 2000) + " ..." : text;
         }).orElse("");
+    }
+
+    /** The grading's own packages: where a student has nothing to look at. */
+    private static final List<String> MACHINERY = List.of("raylab.boundary.", "raylab.grade.", "raylab.remote.",
+            "raylab.course.", "raylab.cli.");
+
+    /**
+     * Whether {@code className} is the grading's machinery (the boundary, the grader, the test
+     * launcher): a failure's "(at ...)" names the first place a student can open instead, their
+     * code, the framework or the test.
+     */
+    static boolean isMachinery(String className) {
+        return MACHINERY.stream().anyMatch(className::startsWith) && !className.equals(NotImplemented.class.getName());
     }
 
     /** Keeps the first {@code cap} bytes written, and counts the rest. */
