@@ -170,6 +170,24 @@ class EndlessLoopTest {
         assertTrue(Long.parseLong(m.group(1)) >= bound, "stopped after the bound (" + bound + " s): " + m.group());
     }
 
+    /**
+     * Every sentence of the grader's student process for {@code method} gives the CPU time its
+     * serving thread used (the bound and at most a few of the watchdog's polls), not the wall time
+     * it falls back on without a CPU clock ({@link Watchdog#WALL_TIMES} times the bound): the
+     * sandbox mounts no /proc, and the process reads the thread's clock instead.
+     */
+    static void assertCountedInCpuTime(String method, String text) {
+        Matcher m = Pattern.compile("your code has run for (\\d+) s in " + Pattern.quote(method) + " ").matcher(text);
+        int n = 0;
+        while (m.find()) {
+            n++;
+            long said = Long.parseLong(m.group(1));
+            assertTrue(said * 1000 < Watchdog.WALL_TIMES * FLOOR_MILLIS, "counted in CPU time, below "
+                    + Watchdog.WALL_TIMES + " x " + FLOOR_MILLIS + " ms of wall time: " + m.group());
+        }
+        assertTrue(n > 0, "the loop in " + method + " named:\n" + text);
+    }
+
     static Ran render(String method) throws Exception {
         String scene = OWNER.get(method).scenes().get(0).scene();
         return run(dir.resolve(method), "render", scene, "-o", dir.resolve(method + ".png").toString(), "--quiet",
@@ -285,6 +303,7 @@ class EndlessLoopTest {
                 Ran r = grades.get(method).get();
                 assertEquals(0, r.status(), "exit status; stderr: " + r.err());
                 assertNamed(method, r.out());
+                assertCountedInCpuTime(method, r.out());
                 assertTrue(r.out().contains("\"score\""), "graded: " + r.out());
             }));
         }

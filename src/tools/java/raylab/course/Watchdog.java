@@ -158,20 +158,45 @@ public final class Watchdog implements AutoCloseable {
     /**
      * As {@link #idle(long, long, Duration)} in CPU time only, for the grader's student process,
      * whose wall time is bounded by the grader in the student's own time (its waits for a CPU left
-     * out, {@code raylab.boundary.StudentProcess}); where this process cannot read its CPU time
-     * (the grader's sandbox mounts no /proc) in wall time at {@link #WALL_TIMES} times the bound.
+     * out, {@code raylab.boundary.StudentProcess}); where this process cannot read a CPU clock
+     * ({@link #threadCpuNanos} says −1) in wall time at {@link #WALL_TIMES} times the bound.
      */
     public static Duration cpuIdle(long wallNanos, long cpuNanos, Duration bound) {
         if (cpuNanos >= 0) {
             return cpuNanos >= bound.toNanos() ? Duration.ofNanos(cpuNanos) : null;
         }
-        // No CPU clock (the grader's sandbox has no /proc): only the wall time at WALL_TIMES x the bound.
+        // No CPU clock: only the wall time at WALL_TIMES x the bound.
         return wallNanos >= WALL_TIMES * bound.toNanos() ? Duration.ofNanos(wallNanos) : null;
     }
 
-    /** The CPU time of this process so far (ns), or −1 where the system does not say. */
+    /** The CPU time of this process so far (ns), or −1 where the system does not say (no /proc). */
     public static long cpuNanos() {
         return ProcessHandle.current().info().totalCpuDuration().map(Duration::toNanos).orElse(-1L);
+    }
+
+    /**
+     * The CPU time {@code thread} has used so far (ns), or −1 where this JVM cannot say: it was
+     * started without the {@code java.management} module, or the thread has ended. Unlike
+     * {@link #cpuNanos()} it reads no /proc: HotSpot on Linux asks the kernel for the thread's
+     * own clock ({@code pthread_getcpuclockid}, {@code clock_gettime}), so it also counts in the
+     * grader's sandbox, which mounts no /proc.
+     */
+    public static long threadCpuNanos(Thread thread) {
+        return ModuleLayer.boot().findModule("java.management").isPresent() ? ThreadClock.nanos(thread) : -1;
+    }
+
+    /** Apart, so that a JVM without java.management never loads it. */
+    private static final class ThreadClock {
+        private static final java.lang.management.ThreadMXBean THREADS = java.lang.management.ManagementFactory
+                .getThreadMXBean();
+
+        static long nanos(Thread thread) {
+            try {
+                return THREADS.isThreadCpuTimeSupported() ? THREADS.getThreadCpuTime(thread.getId()) : -1;
+            } catch (UnsupportedOperationException e) {
+                return -1; // measuring thread CPU time switched off
+            }
+        }
     }
 
     /**

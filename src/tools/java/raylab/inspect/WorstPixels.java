@@ -55,7 +55,7 @@ public final class WorstPixels {
         List<long[]> order = new ArrayList<>();
         for (int y = 0; y < h; y++) {
             for (int x = 0; x < w; x++) {
-                int d = Inspection.channelDifference(Image.toRgb8(mine.get(x, y)), Image.toRgb8(reference.get(x, y)));
+                int d = difference(mine.get(x, y), reference.get(x, y));
                 if (d > raylab.render.ImageCompare.PIXEL_THRESHOLD) {
                     order.add(new long[] {d, y * (long) w + x});
                 }
@@ -88,6 +88,30 @@ public final class WorstPixels {
                 + common + " (" + n + " of " + found.size() + "), for example at pixel (" + example.x() + ", "
                 + example.y() + "): " + example.difference().line();
         return Optional.of(new Result(summary, n, found.size(), found.subList(0, Math.min(SHOWN, found.size()))));
+    }
+
+    /**
+     * Whether {@link #find} has a pixel to trace: one whose 8-bit colours differ by more than
+     * {@code ImageCompare.PIXEL_THRESHOLD}. The grader asks first, so that two images that agree
+     * cost no student process for their feedback.
+     */
+    public static boolean anyDiffers(Image mine, Image reference) {
+        for (int y = 0; y < mine.height; y++) {
+            for (int x = 0; x < mine.width; x++) {
+                if (difference(mine.get(x, y), reference.get(x, y)) > raylab.render.ImageCompare.PIXEL_THRESHOLD) {
+                    return true;
+                }
+            }
+        }
+        return false;
+    }
+
+    /** The largest 8-bit channel difference of two pixels (0 at once when their values are equal). */
+    private static int difference(raylab.math.Color a, raylab.math.Color b) {
+        if (a.r == b.r && a.g == b.g && a.b == b.b) {
+            return 0;
+        }
+        return Inspection.channelDifference(Image.toRgb8(a), Image.toRgb8(b));
     }
 
     /** "Sphere.intersect, eye ray": what is counted as the same first difference. */

@@ -307,10 +307,12 @@ public final class StudentServer {
 
     /**
      * The student process's watchdog: when a frame is being served and no call of the student's
-     * has returned while this process used {@code boundNanos} of CPU time (in the grader's sandbox,
-     * which has no /proc to read it from: 6 times that of wall time; never counting the time spent
-     * waiting for the grader's answers; code that waits instead of running meets the grader's wall
-     * limit, in the student's own time) and the serving thread is in the student's classes, it answers the frame the grader waits
+     * has returned while the serving thread used {@code boundNanos} of CPU time
+     * ({@link raylab.course.Watchdog#threadCpuNanos}: the kernel's clock of that thread, which needs
+     * no /proc, so it counts in the grader's sandbox too; only where the JVM cannot read it, 6 times
+     * that of wall time; never counting the time spent waiting for the grader's answers; code that
+     * waits instead of running meets the grader's wall limit, in the student's own time) and the
+     * serving thread is in the student's classes, it answers the frame the grader waits
      * for with a THROW of {@link #STUCK} whose message says where ("your code has run for 2 s in
      * Lambertian.diffuse (Lambertian.java:41) without returning: an endless loop?", the student's
      * frames of the thread's stack, as {@code raylab.course.Watchdog} says it), then ends this
@@ -331,9 +333,9 @@ public final class StudentServer {
                 return;
             }
             long u = progress;
-            long cpu = raylab.course.Watchdog.cpuNanos();
-            long wall = System.nanoTime();
             Thread t = serving;
+            long cpu = t == null ? -1 : raylab.course.Watchdog.threadCpuNanos(t);
+            long wall = System.nanoTime();
             if (u != seen || !busy || waiting || t == null) {
                 seen = waiting || !busy ? -1 : u; // the grader's time, or none served: the clocks start again
                 cpu0 = cpu;

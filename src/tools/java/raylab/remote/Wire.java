@@ -186,15 +186,31 @@ public final class Wire {
 
         public void writeInt(int v) {
             need(4);
-            buf[n++] = (byte) (v >>> 24);
-            buf[n++] = (byte) (v >>> 16);
-            buf[n++] = (byte) (v >>> 8);
-            buf[n++] = (byte) v;
+            byte[] b = buf;
+            int i = n;
+            b[i] = (byte) (v >>> 24);
+            b[i + 1] = (byte) (v >>> 16);
+            b[i + 2] = (byte) (v >>> 8);
+            b[i + 3] = (byte) v;
+            n = i + 4;
         }
 
+        /** Big-endian, as two {@link #writeInt}s; one bounds check (a render writes millions of doubles). */
         public void writeLong(long v) {
-            writeInt((int) (v >>> 32));
-            writeInt((int) v);
+            need(8);
+            byte[] b = buf;
+            int i = n;
+            int hi = (int) (v >>> 32);
+            int lo = (int) v;
+            b[i] = (byte) (hi >>> 24);
+            b[i + 1] = (byte) (hi >>> 16);
+            b[i + 2] = (byte) (hi >>> 8);
+            b[i + 3] = (byte) hi;
+            b[i + 4] = (byte) (lo >>> 24);
+            b[i + 5] = (byte) (lo >>> 16);
+            b[i + 6] = (byte) (lo >>> 8);
+            b[i + 7] = (byte) lo;
+            n = i + 8;
         }
 
         public void writeDouble(double d) {
@@ -339,8 +355,24 @@ public final class Wire {
 
         public Key(byte[] bytes) {
             this.bytes = bytes;
-            this.hash = Arrays.hashCode(bytes);
+            this.hash = hash(bytes);
         }
+
+        /** A hash of the bytes read eight at a time (a key is a call's inputs, a hundred bytes and more). */
+        private static int hash(byte[] b) {
+            long h = 1;
+            int i = 0;
+            for (; i + 7 < b.length; i += 8) {
+                h = 31 * h + (long) LONGS.get(b, i);
+            }
+            for (; i < b.length; i++) {
+                h = 31 * h + b[i];
+            }
+            return (int) (h ^ (h >>> 32));
+        }
+
+        private static final java.lang.invoke.VarHandle LONGS = java.lang.invoke.MethodHandles
+                .byteArrayViewVarHandle(long[].class, java.nio.ByteOrder.BIG_ENDIAN);
 
         public byte[] bytes() {
             return bytes;

@@ -301,8 +301,21 @@ public final class Speculation {
         return g;
     }
 
+    /** The neutral guesses asked for last, each in an array of one (a void method's is null). */
+    private final RecentMethods<Object[]> recentNeutral = new RecentMethods<>();
+
     /** The neutral guess of a method's result: false, black, zero, nothing; no reference in it. */
     private Object neutral(String cls, String name, int arity) {
+        Object[] recent = recentNeutral.get(cls, name, arity);
+        if (recent != null) {
+            return recent[0];
+        }
+        Object v = neutralOf(cls, name, arity);
+        recentNeutral.put(cls, name, arity, new Object[] {v});
+        return v;
+    }
+
+    private Object neutralOf(String cls, String name, int arity) {
         String k = cls + "#" + name + "#" + arity;
         Object v = neutral.get(k);
         if (v == null && !neutral.containsKey(k)) {
@@ -443,8 +456,7 @@ public final class Speculation {
 
     private Wire.Key keyOf(Object self, String cls, String name, Object[] args) {
         key.reset();
-        key.writeString(cls);
-        key.writeString(name);
+        key.writeInt(methodNumber(cls, name, args.length));
         try {
             Wire.writeValue(key, self, keyRefs);
             key.writeInt(args.length);
@@ -455,6 +467,19 @@ public final class Speculation {
             return null;
         }
         return key.key();
+    }
+
+    /** The methods' numbers in this render's keys: the same method, the same number. */
+    private final Map<String, Integer> methodNumbers = new HashMap<>();
+    private final RecentMethods<Integer> recentNumbers = new RecentMethods<>();
+
+    private int methodNumber(String cls, String name, int arity) {
+        Integer n = recentNumbers.get(cls, name, arity);
+        if (n == null) {
+            n = methodNumbers.computeIfAbsent(cls + "#" + name + "#" + arity, x -> methodNumbers.size() + 1);
+            recentNumbers.put(cls, name, arity, n);
+        }
+        return n;
     }
 
     private int stable(Object o) {

@@ -255,9 +255,12 @@ public final class TrustedRender {
                 PngFiles.write(image.toBufferedImage(), out);
                 if (reference != null && set[0] == scene.width * scene.height) {
                     PngFiles.write(reference.toBufferedImage(), Path.of(out + ".reference.png"));
-                    // After every scene is rendered, so that the feedback cannot change a score.
-                    Path feedback = Path.of(out + ".pixels.json");
-                    later.add(() -> pixelFeedback(scene, image, reference, spec, feedback));
+                    // After every scene is rendered, so that the feedback cannot change a score;
+                    // only for images that differ (else it has nothing to trace, and no process is started).
+                    if (raylab.inspect.WorstPixels.anyDiffers(image, reference)) {
+                        Path feedback = Path.of(out + ".pixels.json");
+                        later.add(() -> pixelFeedback(scene, image, reference, spec, feedback));
+                    }
                 }
                 if (Boolean.getBoolean("raylab.boundary.raw")) {
                     writeRaw(image, Path.of(out + ".raw")); // every channel's bits, for tests

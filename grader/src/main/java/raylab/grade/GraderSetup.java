@@ -95,6 +95,20 @@ final class GraderSetup {
         return JavaBuild.ownClassPath().stream().map(p -> p.toAbsolutePath().normalize()).toList();
     }
 
+    /**
+     * Whether {@code p} is a jar of the build's own tools, which no trusted JVM loads: Maven's
+     * test runner, the fuzzer, the architecture tests, the study's charts and their PDF and
+     * logging libraries. On a test run's class path (the grader graded in Maven's test JVM) they
+     * are most of its megabytes, which every grading would hash ({@link CacheManifest#verify})
+     * and every seeded copy of the cache would copy. Folders and every other jar are kept: an
+     * instructor's classes before the jar ({@code target/incremental}) go wherever raylab's go.
+     */
+    static boolean toolOfTheBuild(Path p) {
+        return p.getFileName().toString().matches("(surefire|common-java5|jazzer|archunit|slf4j|xchart"
+                + "|VectorGraphics2D|graphics2d|pdfbox|fontbox|commons-logging|animated-gif-lib|jmh|jopt-simple"
+                + "|commons-math3|pitest)[-.].*\\.jar");
+    }
+
     /** The class path entry holding raylab's own classes (a directory or the shaded jar). */
     static Path codeSource() throws IOException {
         for (Path p : GraderSetup.ownClassPath()) {
@@ -181,7 +195,7 @@ final class GraderSetup {
         Path code = codeSource();
         List<Path> libs = new ArrayList<>();
         for (Path p : GraderSetup.ownClassPath()) {
-            if (!p.equals(code) && !p.getFileName().toString().equals("test-classes")) {
+            if (!p.equals(code) && !p.getFileName().toString().equals("test-classes") && !toolOfTheBuild(p)) {
                 libs.add(p.toAbsolutePath());
             }
         }

@@ -38,6 +38,16 @@ record GradingRun(Grader.Options options, GraderSetup setup, Sandbox sandbox, Pa
     /** Phase times on standard error (environment variable RAYLAB_GRADE_TIMES; measurements only). */
     static final boolean TIMES = System.getenv("RAYLAB_GRADE_TIMES") != null;
 
+    /**
+     * The modules a student process sees: those of a test JVM that runs student code
+     * ({@link TestLauncher#CHILD_MODULES}) and {@code java.management}, whose thread clock is the
+     * watchdog's CPU time in the sandbox, which mounts no /proc ({@code Watchdog.threadCpuNanos}).
+     * It reads this JVM only: no attach, no heap, no remote connector ({@code jdk.attach},
+     * {@code jdk.management} and {@code java.management.rmi} stay out), and the process holds
+     * nothing of the grader's.
+     */
+    static final String STUDENT_PROCESS_MODULES = TestLauncher.CHILD_MODULES + ",java.management";
+
     /** The instructor's project root, absolute. */
     Path root() {
         return options.root().toAbsolutePath();
@@ -99,7 +109,7 @@ record GradingRun(Grader.Options options, GraderSetup setup, Sandbox sandbox, Pa
         cmd.addAll(List.of(JavaBuild.javaExecutable(),
                 StudentServer.CHANNEL_JVM_OPTION, "-Xmx" + heapMb + "m",
                 "-Xss4m", "-XX:+ExitOnOutOfMemoryError", "-Djava.awt.headless=true",
-                "-XX:+DisableAttachMechanism", "-XX:-UsePerfData", "--limit-modules", TestLauncher.CHILD_MODULES,
+                "-XX:+DisableAttachMechanism", "-XX:-UsePerfData", "--limit-modules", STUDENT_PROCESS_MODULES,
                 "-Dfile.encoding=UTF-8"));
         // C1 only: at 0.5 CPU, C2's compiler threads cost more than its faster code saves,
         // even in a render's hundreds of thousands of calls (grader/README.md).
