@@ -61,7 +61,8 @@ record GradingRun(Grader.Options options, GraderSetup setup, Sandbox sandbox, Pa
 
     /**
      * The class path of a trusted JVM from {@code trusted}: every entry but the libraries it does
-     * not need (a test JVM: JUnit and Jackson; a render JVM: all but Maven's).
+     * not need (a test JVM: JUnit and Jackson; a render JVM: all the cache holds, which leaves the
+     * build's own tools out, {@code GraderSetup.toolOfTheBuild}).
      */
     List<Path> trustedClassPath(List<Path> trusted, boolean render) {
         List<Path> cp = new ArrayList<>();
@@ -74,11 +75,7 @@ record GradingRun(Grader.Options options, GraderSetup setup, Sandbox sandbox, Pa
     }
 
     private static boolean libraryFor(Path lib, boolean render) {
-        String n = lib.getFileName().toString();
-        if (n.matches("\\d+-(surefire|common-java5).*")) {
-            return false;
-        }
-        return render || n.matches("\\d+-(junit|opentest4j|apiguardian|jackson).*");
+        return render || lib.getFileName().toString().matches("\\d+-(junit|opentest4j|apiguardian|jackson).*");
     }
 
     /**
