@@ -180,7 +180,7 @@ class GraderAttackTest {
             // far): a short scene limit keeps the wait for their time-out short. The renders are not
             // what these tests check.
             String[] base = {"grade", sub.toString(), "--out", out.toString(), "--root", root.toString(), "--quiet",
-                "--test-timeout", "5", "--milestone-timeout", "60", "--scene-timeout", "2", "--heap", "256",
+                "--test-timeout", "5", "--milestone-timeout", "60", "--scene-timeout", "1", "--heap", "256",
                 "--milestone", "sphere", "--sandbox", mode, "--sandbox-user", user, "--cache", cache.toString(),
                 "--prairielearn", out.resolveSibling(out.getFileName() + "-pl.json").toString()};
             String[] args = base;
@@ -401,14 +401,14 @@ class GraderAttackTest {
             }
             ByteArrayOutputStream err = new ByteArrayOutputStream();
             // The attacked milestones' renders run until their time-out (the sphere prints every ray
-            // it sees), spending the student's CPU budget of every call: 3 s, not the default 60
-            // (the budget is the student's CPU time, so load does not shorten it). A render of the
-            // reference milestones is batches of a few milliseconds each (its slowest scene, mesh,
-            // about 0.9 s of student CPU in all). No test here is about that time-out: it only
-            // burned CPU (docs/testing.md).
+            // it sees), spending the student's CPU budget of every call: 2 s a scene, not the default
+            // 60 (the budget is the student's CPU time, so load does not shorten it). A render of the
+            // reference milestones is batches of a few milliseconds each (its slowest milestone,
+            // triangle, about 1.4 s of student CPU for its two scenes, whose budget is 4 s). No test
+            // here is about that time-out: it only burned CPU (docs/testing.md).
             List<String> args = new java.util.ArrayList<>(List.of("grade", sub.toString(), "--out", out.toString(),
                     "--root", root.toString(), "--quiet", "--test-timeout", "10", "--milestone-timeout", "120",
-                    "--scene-timeout", "3", "--heap", "256", "--sandbox", mode, "--sandbox-user", user, "--cache",
+                    "--scene-timeout", "2", "--heap", "256", "--sandbox", mode, "--sandbox-user", user, "--cache",
                     cache.toString()));
             // A disarmed twin is only compared on its attacked milestones: it grades only those.
             for (String m : armed ? List.<String>of() : milestonesOf(attacks)) {

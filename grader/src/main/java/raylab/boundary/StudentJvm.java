@@ -233,7 +233,7 @@ public final class StudentJvm {
         List<String> cmd = new ArrayList<>(StudentServer.CHANNEL_WRAPPER);
         cmd.addAll(List.of(JavaBuild.javaExecutable(),
                 StudentServer.CHANNEL_JVM_OPTION, "-Xmx" + heapMb + "m", "-XX:+ExitOnOutOfMemoryError", "-Djava.awt.headless=true",
-                "-XX:+DisableAttachMechanism", "-XX:-UsePerfData", "-XX:TieredStopAtLevel=4", "-Xss4m",
+                "-XX:+DisableAttachMechanism", "-XX:-UsePerfData", "-XX:TieredStopAtLevel=1", "-XX:+UseSerialGC", "-Xss4m",
                 "-cp", String.join(File.pathSeparator, classPath.stream().map(Path::toString).toList()),
                 "raylab.remote.StudentServer", "--channel"));
         for (String c : studentClasses) {
