@@ -111,7 +111,7 @@ class EndlessLoopTest {
         Path out = Files.createTempFile(dir, "out", ".txt");
         Path err = Files.createTempFile(dir, "err", ".txt");
         List<String> cmd = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
-                "-XX:TieredStopAtLevel=1", "-cp", (first == null ? "" : first + File.pathSeparator)
+                "-XX:TieredStopAtLevel=1", "-XX:+UseSerialGC", "-cp", (first == null ? "" : first + File.pathSeparator)
                         + System.getProperty("java.class.path"), "raylab.cli.Main"));
         cmd.addAll(List.of(args));
         ProcessBuilder pb = new ProcessBuilder(cmd).directory(ROOT.toFile()).redirectOutput(out.toFile())
@@ -136,7 +136,7 @@ class EndlessLoopTest {
         Path home = Files.createDirectories(dir.resolve("watch-home-" + method));
         String scene = OWNER.get(method).scenes().get(0).scene();
         List<String> cmd = List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
-                "-XX:TieredStopAtLevel=1", "-Draylab.home=" + home, "-cp", dir.resolve(method) + File.pathSeparator
+                "-XX:TieredStopAtLevel=1", "-XX:+UseSerialGC", "-Draylab.home=" + home, "-cp", dir.resolve(method) + File.pathSeparator
                         + System.getProperty("java.class.path"), "raylab.cli.Main", "render", scene, "--watch", "-o",
                 dir.resolve(method + "-watch.png").toString(), "--quiet", "--threads", "1");
         ProcessBuilder pb = new ProcessBuilder(cmd).directory(ROOT.toFile()).redirectErrorStream(true)
