@@ -73,8 +73,10 @@ final class Watch {
             out.println();
             out.flush();
             if (compile(out, home)) {
-                List<String> cmd = new ArrayList<>(List.of(JavaBuild.javaExecutable(),
-                        "-Draylab.home=" + home, "-cp", String.join(File.pathSeparator,
+                // Started as the raylab launcher starts a command (JavaBuild.QUICK_JVM).
+                List<String> cmd = new ArrayList<>(List.of(JavaBuild.javaExecutable()));
+                cmd.addAll(JavaBuild.QUICK_JVM);
+                cmd.addAll(List.of("-Draylab.home=" + home, "-cp", String.join(File.pathSeparator,
                                 JavaBuild.ownClassPath().stream().map(p -> p.toAbsolutePath().toString()).toList()),
                         Main.class.getName()));
                 cmd.addAll(args);
