@@ -255,7 +255,8 @@ class BatchedRenderTest {
         cp.add(m.standIns().toString());
         cp.add(System.getProperty("java.class.path"));
         Path png = out.resolve("render.png");
-        List<String> cmd = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(), "-XX:TieredStopAtLevel=1", "-XX:+UseSerialGC",
+        List<String> cmd = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
+                "-XX:TieredStopAtLevel=1", "-XX:+UseSerialGC",
                 "-Draylab.boundary=" + config, "-Draylab.boundary.raw=true", "-Djava.awt.headless=true"));
         if (batched) {
             cmd.add("-Draylab.boundary.references=" + m.references());

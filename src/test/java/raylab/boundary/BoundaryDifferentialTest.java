@@ -212,7 +212,8 @@ class BoundaryDifferentialTest {
         List<String> cp = new ArrayList<>();
         cp.add(standIns.toString());
         cp.add(System.getProperty("java.class.path"));
-        List<String> cmd = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(), "-XX:TieredStopAtLevel=1", "-XX:+UseSerialGC",
+        List<String> cmd = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
+                "-XX:TieredStopAtLevel=1", "-XX:+UseSerialGC",
                 "-Draylab.boundary=" + config, "-Djava.awt.headless=true",
                 "-Draylab.boundary.references=" + references, "-D" + Speculation.PERTURB + "=" + perturb,
                 "-cp", String.join(File.pathSeparator, cp), "raylab.boundary.TrustedRender"));

@@ -52,7 +52,8 @@ class BoundaryRenderTest {
         cp.add(System.getProperty("java.class.path"));
         Path scene = root.resolve("scenes/sphere.json");
         Path png = dir.resolve("replayed.png");
-        Process p = new ProcessBuilder(Path.of(System.getProperty("java.home"), "bin", "java").toString(), "-XX:TieredStopAtLevel=1", "-XX:+UseSerialGC",
+        Process p = new ProcessBuilder(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
+                "-XX:TieredStopAtLevel=1", "-XX:+UseSerialGC",
                 "-Draylab.boundary=" + config, "-Djava.awt.headless=true", "-cp", String.join(File.pathSeparator, cp),
                 "raylab.boundary.TrustedRender", scene.toString(), png.toString(), "scenes/sphere.json")
                 .redirectErrorStream(true).redirectOutput(dir.resolve("log.txt").toFile()).start();

@@ -136,9 +136,10 @@ class EndlessLoopTest {
         Path home = Files.createDirectories(dir.resolve("watch-home-" + method));
         String scene = OWNER.get(method).scenes().get(0).scene();
         List<String> cmd = List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
-                "-XX:TieredStopAtLevel=1", "-XX:+UseSerialGC", "-Draylab.home=" + home, "-cp", dir.resolve(method) + File.pathSeparator
-                        + System.getProperty("java.class.path"), "raylab.cli.Main", "render", scene, "--watch", "-o",
-                dir.resolve(method + "-watch.png").toString(), "--quiet", "--threads", "1");
+                "-XX:TieredStopAtLevel=1", "-XX:+UseSerialGC", "-Draylab.home=" + home,
+                "-cp", dir.resolve(method) + File.pathSeparator + System.getProperty("java.class.path"),
+                "raylab.cli.Main", "render", scene, "--watch", "-o", dir.resolve(method + "-watch.png").toString(),
+                "--quiet", "--threads", "1");
         ProcessBuilder pb = new ProcessBuilder(cmd).directory(ROOT.toFile()).redirectErrorStream(true)
                 .redirectOutput(out.toFile());
         pb.environment().put(Watchdog.FLOOR_ENV, Long.toString(FLOOR_MILLIS));

@@ -47,7 +47,8 @@ class StudentFaultTest {
     }
 
     static String[] run(String... args) throws Exception {
-        List<String> cmd = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(), "-XX:TieredStopAtLevel=1", "-XX:+UseSerialGC",
+        List<String> cmd = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
+                "-XX:TieredStopAtLevel=1", "-XX:+UseSerialGC",
                 "-cp", classes + File.pathSeparator + System.getProperty("java.class.path"), "raylab.cli.Main"));
         cmd.addAll(List.of(args));
         Path out = dir.resolve("out.txt");

@@ -159,7 +159,8 @@ class SubmitCheckTest {
         git(repo, "commit", "-q", "-m", "box");
         git(repo, "tag", "box");
         Files.copy(Path.of(box), repo.resolve(box), java.nio.file.StandardCopyOption.REPLACE_EXISTING);
-        Process p = new ProcessBuilder(Path.of(System.getProperty("java.home"), "bin", "java").toString(), "-XX:TieredStopAtLevel=1", "-XX:+UseSerialGC", "-cp",
+        Process p = new ProcessBuilder(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
+                "-XX:TieredStopAtLevel=1", "-XX:+UseSerialGC", "-cp",
                 System.getProperty("java.class.path"), "raylab.cli.Main", "submit-check", "box").directory(repo.toFile())
                 .redirectErrorStream(true).start();
         String out = new String(p.getInputStream().readAllBytes(), StandardCharsets.UTF_8);

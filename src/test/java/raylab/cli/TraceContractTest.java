@@ -65,7 +65,8 @@ class TraceContractTest {
         Files.writeString(scene, SCENE);
         List<Path> cp = new ArrayList<>(List.of(classes));
         cp.addAll(JavaBuild.ownClassPath());
-        List<String> cmd = List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(), "-XX:TieredStopAtLevel=1", "-XX:+UseSerialGC", "-cp",
+        List<String> cmd = List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
+                "-XX:TieredStopAtLevel=1", "-XX:+UseSerialGC", "-cp",
                 String.join(File.pathSeparator, cp.stream().map(Path::toString).toList()), "raylab.cli.Main", "trace",
                 scene.toString(), "--pixel", "10", "10");
         Process p = new ProcessBuilder(cmd).redirectErrorStream(true).start();

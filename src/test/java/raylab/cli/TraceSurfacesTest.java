@@ -84,7 +84,8 @@ class TraceSurfacesTest {
                 "raylab/surface/Box.java", Files.readString(bug)), build.resolve("src"),
                 raylab.course.JavaBuild.ownClassPath(), build.resolve("classes"));
         assertTrue(r.success(), r.errors().toString());
-        Process p = new ProcessBuilder(Path.of(System.getProperty("java.home"), "bin", "java").toString(), "-XX:TieredStopAtLevel=1", "-XX:+UseSerialGC", "-cp",
+        Process p = new ProcessBuilder(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
+                "-XX:TieredStopAtLevel=1", "-XX:+UseSerialGC", "-cp",
                 build.resolve("classes") + java.io.File.pathSeparator + System.getProperty("java.class.path"),
                 "raylab.cli.Main", "trace", scene.toString(), "--pixel", "10", "10").redirectErrorStream(true).start();
         String text = new String(p.getInputStream().readAllBytes(), java.nio.charset.StandardCharsets.UTF_8);

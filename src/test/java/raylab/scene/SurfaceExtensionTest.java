@@ -132,7 +132,8 @@ class SurfaceExtensionTest {
     }
 
     private static Ran java(String before, String main, String... args) throws IOException, InterruptedException {
-        List<String> cmd = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(), "-XX:TieredStopAtLevel=1", "-XX:+UseSerialGC",
+        List<String> cmd = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
+                "-XX:TieredStopAtLevel=1", "-XX:+UseSerialGC",
                 "-cp", before + System.getProperty("java.class.path"), main));
         cmd.addAll(List.of(args));
         Path out = dir.resolve("out.txt");

@@ -116,7 +116,8 @@ class StudentMeshPathTest {
         JavaBuild.Result built = MilestoneBuild.compileOverlay(Map.of("raylab/surface/Triangle.java", forged), src,
                 JavaBuild.ownClassPath(), out);
         assertTrue(built.success(), "compiles: " + built.errors());
-        ProcessBuilder pb = new ProcessBuilder(Path.of(System.getProperty("java.home"), "bin", "java").toString(), "-XX:TieredStopAtLevel=1", "-XX:+UseSerialGC", "-cp",
+        ProcessBuilder pb = new ProcessBuilder(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
+                "-XX:TieredStopAtLevel=1", "-XX:+UseSerialGC", "-cp",
                 MilestoneBuild.classPath(out).stream().map(Path::toString)
                         .collect(java.util.stream.Collectors.joining(java.io.File.pathSeparator)),
                 ProbeMain.class.getName());

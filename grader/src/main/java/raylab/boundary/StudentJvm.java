@@ -233,8 +233,9 @@ public final class StudentJvm {
         List<String> cmd = new ArrayList<>(StudentServer.CHANNEL_WRAPPER);
         cmd.addAll(List.of(JavaBuild.javaExecutable(),
                 StudentServer.CHANNEL_JVM_OPTION, "-Xmx" + heapMb + "m", "-XX:+ExitOnOutOfMemoryError", "-Djava.awt.headless=true",
-                "-XX:+DisableAttachMechanism", "-XX:-UsePerfData", "-XX:TieredStopAtLevel=1", "-XX:+UseSerialGC", "-Xss4m",
-                "-cp", String.join(File.pathSeparator, classPath.stream().map(Path::toString).toList()),
+                "-XX:+DisableAttachMechanism", "-XX:-UsePerfData", "-Xss4m"));
+        cmd.addAll(JavaBuild.QUICK_JVM); // as the grader's own student process (GradingRun.studentConfig)
+        cmd.addAll(List.of("-cp", String.join(File.pathSeparator, classPath.stream().map(Path::toString).toList()),
                 "raylab.remote.StudentServer", "--channel"));
         for (String c : studentClasses) {
             cmd.add("--student");

@@ -181,7 +181,8 @@ class PlaneMilestoneTest {
     }
 
     private static Ran raylab(String cp, Path workDir, String... args) throws IOException, InterruptedException {
-        List<String> cmd = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(), "-XX:TieredStopAtLevel=1", "-XX:+UseSerialGC",
+        List<String> cmd = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
+                "-XX:TieredStopAtLevel=1", "-XX:+UseSerialGC",
                 "-cp", cp, "raylab.cli.Main"));
         cmd.addAll(List.of(args));
         Path out = Files.createTempFile(workDir.getParent(), "raylab", ".out");
