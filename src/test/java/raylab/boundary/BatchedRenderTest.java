@@ -18,6 +18,7 @@ import org.junit.jupiter.api.BeforeAll;
 import org.junit.jupiter.params.ParameterizedTest;
 import org.junit.jupiter.params.provider.ValueSource;
 
+import raylab.course.JavaBuild;
 import raylab.course.SolutionRegions;
 
 /**
@@ -255,9 +256,9 @@ class BatchedRenderTest {
         cp.add(m.standIns().toString());
         cp.add(System.getProperty("java.class.path"));
         Path png = out.resolve("render.png");
-        List<String> cmd = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
-                "-XX:TieredStopAtLevel=1", "-XX:+UseSerialGC",
-                "-Draylab.boundary=" + config, "-Draylab.boundary.raw=true", "-Djava.awt.headless=true"));
+        List<String> cmd = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString()));
+        cmd.addAll(JavaBuild.QUICK_JVM); // as the raylab launcher starts a command
+        cmd.addAll(List.of("-Draylab.boundary=" + config, "-Draylab.boundary.raw=true", "-Djava.awt.headless=true"));
         if (batched) {
             cmd.add("-Draylab.boundary.references=" + m.references());
         }

@@ -28,6 +28,7 @@ import org.junit.jupiter.params.ParameterizedTest;
 import org.junit.jupiter.params.provider.Arguments;
 import org.junit.jupiter.params.provider.MethodSource;
 
+import raylab.course.JavaBuild;
 import raylab.course.SolutionRegions;
 import raylab.remote.StudentServer;
 
@@ -212,9 +213,9 @@ class BoundaryDifferentialTest {
         List<String> cp = new ArrayList<>();
         cp.add(standIns.toString());
         cp.add(System.getProperty("java.class.path"));
-        List<String> cmd = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
-                "-XX:TieredStopAtLevel=1", "-XX:+UseSerialGC",
-                "-Draylab.boundary=" + config, "-Djava.awt.headless=true",
+        List<String> cmd = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString()));
+        cmd.addAll(JavaBuild.QUICK_JVM); // as the raylab launcher starts a command
+        cmd.addAll(List.of("-Draylab.boundary=" + config, "-Djava.awt.headless=true",
                 "-Draylab.boundary.references=" + references, "-D" + Speculation.PERTURB + "=" + perturb,
                 "-cp", String.join(File.pathSeparator, cp), "raylab.boundary.TrustedRender"));
         for (int i = 0; i < triples.size(); i++) {

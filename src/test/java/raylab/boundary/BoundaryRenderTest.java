@@ -17,6 +17,7 @@ import java.util.concurrent.TimeUnit;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
 
+import raylab.course.JavaBuild;
 import raylab.course.SolutionRegions;
 import raylab.render.PngFiles;
 import raylab.render.Renderer;
@@ -52,10 +53,12 @@ class BoundaryRenderTest {
         cp.add(System.getProperty("java.class.path"));
         Path scene = root.resolve("scenes/sphere.json");
         Path png = dir.resolve("replayed.png");
-        Process p = new ProcessBuilder(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
-                "-XX:TieredStopAtLevel=1", "-XX:+UseSerialGC",
-                "-Draylab.boundary=" + config, "-Djava.awt.headless=true", "-cp", String.join(File.pathSeparator, cp),
-                "raylab.boundary.TrustedRender", scene.toString(), png.toString(), "scenes/sphere.json")
+        List<String> cmd = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString()));
+        cmd.addAll(JavaBuild.QUICK_JVM); // as the raylab launcher starts a command
+        cmd.addAll(List.of("-Draylab.boundary=" + config, "-Djava.awt.headless=true", "-cp",
+                String.join(File.pathSeparator, cp), "raylab.boundary.TrustedRender", scene.toString(), png.toString(),
+                "scenes/sphere.json"));
+        Process p = new ProcessBuilder(cmd)
                 .redirectErrorStream(true).redirectOutput(dir.resolve("log.txt").toFile()).start();
         assertTrue(p.waitFor(300, TimeUnit.SECONDS), "the replayed render finished");
         Path err = Path.of(png + ".err");

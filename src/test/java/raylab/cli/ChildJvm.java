@@ -7,6 +7,8 @@ import java.util.ArrayList;
 import java.util.List;
 import java.util.Map;
 
+import raylab.course.JavaBuild;
+
 /** Runs {@code raylab} in a JVM of its own (for heap limits, locales and signals). */
 final class ChildJvm {
     private ChildJvm() {
@@ -17,7 +19,7 @@ final class ChildJvm {
             throws IOException {
         List<String> cmd = new ArrayList<>();
         cmd.add(Path.of(System.getProperty("java.home"), "bin", "java").toString());
-        cmd.addAll(List.of("-XX:TieredStopAtLevel=1", "-XX:+UseSerialGC")); // as the raylab launcher starts it
+        cmd.addAll(JavaBuild.QUICK_JVM); // as the raylab launcher starts a command
         cmd.addAll(jvmOptions);
         cmd.add("-cp");
         cmd.add(System.getProperty("java.class.path"));

@@ -110,9 +110,10 @@ class EndlessLoopTest {
     static Ran run(Path first, int guardSeconds, String... args) throws Exception {
         Path out = Files.createTempFile(dir, "out", ".txt");
         Path err = Files.createTempFile(dir, "err", ".txt");
-        List<String> cmd = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
-                "-XX:TieredStopAtLevel=1", "-XX:+UseSerialGC", "-cp", (first == null ? "" : first + File.pathSeparator)
-                        + System.getProperty("java.class.path"), "raylab.cli.Main"));
+        List<String> cmd = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString()));
+        cmd.addAll(JavaBuild.QUICK_JVM); // as the raylab launcher starts a command
+        cmd.addAll(List.of("-cp", (first == null ? "" : first + File.pathSeparator)
+                + System.getProperty("java.class.path"), "raylab.cli.Main"));
         cmd.addAll(List.of(args));
         ProcessBuilder pb = new ProcessBuilder(cmd).directory(ROOT.toFile()).redirectOutput(out.toFile())
                 .redirectError(err.toFile());
@@ -135,11 +136,12 @@ class EndlessLoopTest {
         Path out = Files.createTempFile(dir, "watch", ".txt");
         Path home = Files.createDirectories(dir.resolve("watch-home-" + method));
         String scene = OWNER.get(method).scenes().get(0).scene();
-        List<String> cmd = List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
-                "-XX:TieredStopAtLevel=1", "-XX:+UseSerialGC", "-Draylab.home=" + home,
+        List<String> cmd = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString()));
+        cmd.addAll(JavaBuild.QUICK_JVM); // as the raylab launcher starts a command
+        cmd.addAll(List.of("-Draylab.home=" + home,
                 "-cp", dir.resolve(method) + File.pathSeparator + System.getProperty("java.class.path"),
                 "raylab.cli.Main", "render", scene, "--watch", "-o", dir.resolve(method + "-watch.png").toString(),
-                "--quiet", "--threads", "1");
+                "--quiet", "--threads", "1"));
         ProcessBuilder pb = new ProcessBuilder(cmd).directory(ROOT.toFile()).redirectErrorStream(true)
                 .redirectOutput(out.toFile());
         pb.environment().put(Watchdog.FLOOR_ENV, Long.toString(FLOOR_MILLIS));

@@ -94,9 +94,9 @@ class GradedBuildTest {
     static String[] child(String... args) throws Exception {
         Path out = Files.createTempFile(dir, "out", ".txt");
         Path err = Files.createTempFile(dir, "err", ".txt");
-        List<String> cmd = new java.util.ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java")
-                .toString(), "-XX:TieredStopAtLevel=1", "-XX:+UseSerialGC", "-cp", System.getProperty("java.class.path"),
-                "raylab.cli.Main"));
+        List<String> cmd = new java.util.ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString()));
+        cmd.addAll(JavaBuild.QUICK_JVM); // as the raylab launcher starts a command
+        cmd.addAll(List.of("-cp", System.getProperty("java.class.path"), "raylab.cli.Main"));
         cmd.addAll(List.of(args));
         Process p = new ProcessBuilder(cmd).directory(copy.toFile()).redirectOutput(out.toFile())
                 .redirectError(err.toFile()).start();

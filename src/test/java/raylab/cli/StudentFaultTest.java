@@ -47,9 +47,9 @@ class StudentFaultTest {
     }
 
     static String[] run(String... args) throws Exception {
-        List<String> cmd = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
-                "-XX:TieredStopAtLevel=1", "-XX:+UseSerialGC",
-                "-cp", classes + File.pathSeparator + System.getProperty("java.class.path"), "raylab.cli.Main"));
+        List<String> cmd = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString()));
+        cmd.addAll(JavaBuild.QUICK_JVM); // as the raylab launcher starts a command
+        cmd.addAll(List.of("-cp", classes + File.pathSeparator + System.getProperty("java.class.path"), "raylab.cli.Main"));
         cmd.addAll(List.of(args));
         Path out = dir.resolve("out.txt");
         Path err = dir.resolve("err.txt");

@@ -17,6 +17,8 @@ import java.util.zip.ZipOutputStream;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
 
+import raylab.course.JavaBuild;
+
 /** {@code raylab submit-check}: exactly the files the grader takes, and a warning for the rest of a zip. */
 class SubmitCheckTest {
     @TempDir
@@ -159,10 +161,10 @@ class SubmitCheckTest {
         git(repo, "commit", "-q", "-m", "box");
         git(repo, "tag", "box");
         Files.copy(Path.of(box), repo.resolve(box), java.nio.file.StandardCopyOption.REPLACE_EXISTING);
-        Process p = new ProcessBuilder(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
-                "-XX:TieredStopAtLevel=1", "-XX:+UseSerialGC", "-cp",
-                System.getProperty("java.class.path"), "raylab.cli.Main", "submit-check", "box").directory(repo.toFile())
-                .redirectErrorStream(true).start();
+        List<String> cmd = new java.util.ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString()));
+        cmd.addAll(JavaBuild.QUICK_JVM); // as the raylab launcher starts a command
+        cmd.addAll(List.of("-cp", System.getProperty("java.class.path"), "raylab.cli.Main", "submit-check", "box"));
+        Process p = new ProcessBuilder(cmd).directory(repo.toFile()).redirectErrorStream(true).start();
         String out = new String(p.getInputStream().readAllBytes(), StandardCharsets.UTF_8);
         assertEquals(1, p.waitFor(), out);
         assertTrue(out.startsWith("The commit of the tag 'box':\nThe grader takes 1 file from box:"), out);

@@ -65,10 +65,10 @@ class TraceContractTest {
         Files.writeString(scene, SCENE);
         List<Path> cp = new ArrayList<>(List.of(classes));
         cp.addAll(JavaBuild.ownClassPath());
-        List<String> cmd = List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
-                "-XX:TieredStopAtLevel=1", "-XX:+UseSerialGC", "-cp",
-                String.join(File.pathSeparator, cp.stream().map(Path::toString).toList()), "raylab.cli.Main", "trace",
-                scene.toString(), "--pixel", "10", "10");
+        List<String> cmd = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString()));
+        cmd.addAll(JavaBuild.QUICK_JVM); // as the raylab launcher starts a command
+        cmd.addAll(List.of("-cp", String.join(File.pathSeparator, cp.stream().map(Path::toString).toList()),
+                "raylab.cli.Main", "trace", scene.toString(), "--pixel", "10", "10"));
         Process p = new ProcessBuilder(cmd).redirectErrorStream(true).start();
         String out = new String(p.getInputStream().readAllBytes(), StandardCharsets.UTF_8);
         assertTrue(p.waitFor(60, TimeUnit.SECONDS));

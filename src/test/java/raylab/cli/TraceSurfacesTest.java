@@ -84,10 +84,12 @@ class TraceSurfacesTest {
                 "raylab/surface/Box.java", Files.readString(bug)), build.resolve("src"),
                 raylab.course.JavaBuild.ownClassPath(), build.resolve("classes"));
         assertTrue(r.success(), r.errors().toString());
-        Process p = new ProcessBuilder(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
-                "-XX:TieredStopAtLevel=1", "-XX:+UseSerialGC", "-cp",
+        List<String> cmd = new java.util.ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString()));
+        cmd.addAll(raylab.course.JavaBuild.QUICK_JVM); // as the raylab launcher starts a command
+        cmd.addAll(List.of("-cp",
                 build.resolve("classes") + java.io.File.pathSeparator + System.getProperty("java.class.path"),
-                "raylab.cli.Main", "trace", scene.toString(), "--pixel", "10", "10").redirectErrorStream(true).start();
+                "raylab.cli.Main", "trace", scene.toString(), "--pixel", "10", "10"));
+        Process p = new ProcessBuilder(cmd).redirectErrorStream(true).start();
         String text = new String(p.getInputStream().readAllBytes(), java.nio.charset.StandardCharsets.UTF_8);
         assertEquals(0, p.waitFor(), text);
         return text;

@@ -116,11 +116,11 @@ class StudentMeshPathTest {
         JavaBuild.Result built = MilestoneBuild.compileOverlay(Map.of("raylab/surface/Triangle.java", forged), src,
                 JavaBuild.ownClassPath(), out);
         assertTrue(built.success(), "compiles: " + built.errors());
-        ProcessBuilder pb = new ProcessBuilder(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
-                "-XX:TieredStopAtLevel=1", "-XX:+UseSerialGC", "-cp",
-                MilestoneBuild.classPath(out).stream().map(Path::toString)
-                        .collect(java.util.stream.Collectors.joining(java.io.File.pathSeparator)),
-                ProbeMain.class.getName());
+        List<String> cmd = new java.util.ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString()));
+        cmd.addAll(JavaBuild.QUICK_JVM); // as the raylab launcher starts a command
+        cmd.addAll(List.of("-cp", MilestoneBuild.classPath(out).stream().map(Path::toString)
+                .collect(java.util.stream.Collectors.joining(java.io.File.pathSeparator)), ProbeMain.class.getName()));
+        ProcessBuilder pb = new ProcessBuilder(cmd);
         pb.redirectErrorStream(true);
         Process p = pb.start();
         String output = new String(p.getInputStream().readAllBytes(), StandardCharsets.UTF_8).trim();

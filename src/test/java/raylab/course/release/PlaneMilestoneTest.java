@@ -181,9 +181,9 @@ class PlaneMilestoneTest {
     }
 
     private static Ran raylab(String cp, Path workDir, String... args) throws IOException, InterruptedException {
-        List<String> cmd = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
-                "-XX:TieredStopAtLevel=1", "-XX:+UseSerialGC",
-                "-cp", cp, "raylab.cli.Main"));
+        List<String> cmd = new ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString()));
+        cmd.addAll(JavaBuild.QUICK_JVM); // as the raylab launcher starts a command
+        cmd.addAll(List.of("-cp", cp, "raylab.cli.Main"));
         cmd.addAll(List.of(args));
         Path out = Files.createTempFile(workDir.getParent(), "raylab", ".out");
         Process p = new ProcessBuilder(cmd).directory(workDir.toFile()).redirectErrorStream(true).redirectOutput(out.toFile())
