@@ -2,6 +2,7 @@ package raylab.boundary;
 
 import static org.junit.jupiter.api.Assertions.assertArrayEquals;
 import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import java.io.File;
@@ -54,6 +55,10 @@ class BatchedRenderTest {
             case "throwsOnTheRight" -> reference.replace("double a = ray.d.dot(ray.d);",
                     "double a = ray.d.dot(ray.d);\n        if (ray.d.x > 0.21 * Math.sqrt(a)) {"
                             + " throw new IllegalStateException(\"right of the line\"); }");
+            // Misses whenever the record's test count (a group's, one more per surface it tries)
+            // leaves 1 modulo 3: the count must reach the student's code as a call at a time gives it.
+            case "readsTheTestCount" -> reference.replace("double a = ray.d.dot(ray.d);",
+                    "if (outRecord.tests % 3 == 1) { return false; }\n        double a = ray.d.dot(ray.d);");
             default -> throw new IllegalArgumentException(name);
         };
     }
@@ -133,6 +138,11 @@ class BatchedRenderTest {
         Render single = render(m, "shadows-" + student, studentClasses, false);
         assertSameAsOneCallAtATime(student, batched, single);
         if (!student.equals("throwsOnTheRight")) {
+            // The sky's pixels call no stand-in: the reference image's trace gives them, unsent.
+            java.util.regex.Matcher only = java.util.regex.Pattern.compile("framework-only pixels (\\d+)")
+                    .matcher(batched.log());
+            assertTrue(only.find() && Long.parseLong(only.group(1)) > 0, () -> "pixels no stand-in was called for: "
+                    + batched.log());
             assertTrue(batched.log().contains("questions sent back"), () -> "the batched render's counts: "
                     + batched.log());
             assertTrue(!batched.log().contains("questions sent back 0,"), () -> "questions came back with their calls: "
@@ -162,13 +172,20 @@ class BatchedRenderTest {
     }
 
     @ParameterizedTest(name = "{0}")
-    @ValueSource(strings = {"reference", "ignoresClosest", "plainQuadratic", "throwsOnTheRight"})
+    @ValueSource(strings = {"reference", "ignoresClosest", "plainQuadratic", "throwsOnTheRight", "readsTheTestCount"})
     void batchedPixelsAreThePixelsOfOneCallAtATime(String student) throws Exception {
         Path studentClasses = dir.resolve("student-" + student);
         compile(Map.of("raylab/surface/Sphere.java", variant(student)), studentClasses);
         Render batched = render(sphere(), student, studentClasses, true);
         Render single = render(sphere(), student, studentClasses, false);
         assertSameAsOneCallAtATime(student, batched, single);
+        if (student.equals("readsTheTestCount")) {
+            Path referenceClasses = dir.resolve("student-reference");
+            compile(Map.of("raylab/surface/Sphere.java", variant("reference")), referenceClasses);
+            Render plain = render(sphere(), "reference", referenceClasses, false);
+            assertFalse(java.util.Arrays.equals(plain.raw(), single.raw()),
+                    "the test count changes the image (else this variant tests nothing)");
+        }
     }
 
     /** The same error line, and without one the same pixels bit for bit; throwsOnTheRight names its pixel. */

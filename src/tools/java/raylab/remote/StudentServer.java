@@ -500,7 +500,8 @@ public final class StudentServer {
         List<Integer> usedHere = new ArrayList<>();
         List<byte[]> deferredHere = new ArrayList<>();
         // An argument sent AS_BEFORE is the previous call's at the same place: the same object, or
-        // for a record a new one with the fields that one was sent with.
+        // for a record a new one with the fields that one was sent with (AS_BEFORE_TESTS: but the
+        // test count that follows).
         Object[] previous = new Object[0];
         for (int i = 0; i < calls; i++) {
             boolean defer = in.readBoolean();
@@ -513,12 +514,21 @@ public final class StudentServer {
             Object[] args = new Object[n];
             Object[] sent = new Object[n];
             for (int j = 0; j < n; j++) {
-                if (in.peekByte() == Wire.AS_BEFORE) {
+                byte tag = in.peekByte();
+                if (tag == Wire.AS_BEFORE || tag == Wire.AS_BEFORE_TESTS) {
                     in.readByte();
                     if (j >= previous.length || previous[j] == null) {
                         throw new Wire.ProtocolException("an argument as before with none before");
                     }
                     sent[j] = previous[j];
+                    if (tag == Wire.AS_BEFORE_TESTS) {
+                        if (!(previous[j] instanceof IntersectionRecord p)) {
+                            throw new Wire.ProtocolException("a test count for an argument that is not a record");
+                        }
+                        IntersectionRecord r = Wire.copyRecord(p);
+                        r.tests = in.readLong();
+                        sent[j] = r;
+                    }
                     args[j] = sent[j] instanceof IntersectionRecord r ? Wire.copyRecord(r) : sent[j];
                 } else {
                     args[j] = Wire.readValue(in, refs);

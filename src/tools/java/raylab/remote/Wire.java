@@ -117,6 +117,11 @@ public final class Wire {
      * reply, a record the call left as it was sent.
      */
     public static final byte AS_BEFORE = 18;
+    /**
+     * In a MULTI frame's calls: a record with the fields of the previous call's record at the
+     * same place but its test count, {@code [long tests]} (a group counts each surface it tries).
+     */
+    public static final byte AS_BEFORE_TESTS = 19;
 
     // Callback operations.
     public static final byte OP_INTERSECT = 1;
@@ -457,6 +462,12 @@ public final class Wire {
     public static boolean sameRecord(IntersectionRecord x, IntersectionRecord y) {
         return bits(x.t) == bits(y.t) && sameBits(x.point, y.point) && sameBits(x.normal, y.normal) && x.surface == y.surface
                 && x.primitive == y.primitive && x.tests == y.tests;
+    }
+
+    /** Records with the same fields, bit for bit, but perhaps not the same test count ({@link #AS_BEFORE_TESTS}). */
+    public static boolean sameButTests(IntersectionRecord x, IntersectionRecord y) {
+        return bits(x.t) == bits(y.t) && sameBits(x.point, y.point) && sameBits(x.normal, y.normal) && x.surface == y.surface
+                && x.primitive == y.primitive;
     }
 
     /** A copy of a record's fields, its test count included. */

@@ -233,6 +233,12 @@ public final class Batches {
                 // The ray of a pixel goes to every surface, and a record a surface missed to the next.
                 if (j < previous.length && asBefore(previous[j], c.args[j])) {
                     buf.writeByte(Wire.AS_BEFORE);
+                } else if (j < previous.length && previous[j] != c.args[j]
+                        && previous[j] instanceof IntersectionRecord p && c.args[j] instanceof IntersectionRecord r
+                        && Wire.sameButTests(p, r)) {
+                    // The record a group passes from one surface to the next: only the count differs.
+                    buf.writeByte(Wire.AS_BEFORE_TESTS);
+                    buf.writeLong(r.tests);
                 } else {
                     Wire.writeValue(buf, c.args[j], refs);
                 }

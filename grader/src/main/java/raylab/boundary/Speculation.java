@@ -49,7 +49,9 @@ import raylab.surface.Surface;
  * {@link #MAX_ROUNDS} rounds the remaining pixels are traced one call at a time.
  *
  * <p>The milestone's reference runs here only to trace a band's pixels once for the reference
- * image ({@link #beginReference}); those traces note nothing and send nothing.
+ * image ({@link #beginReference}); those traces note nothing and send nothing. A pixel whose
+ * reference trace called no stand-in ({@link #frameworkOnly}) is the trusted framework's alone: its
+ * colour is that trace's, and the rounds leave it out (they would send nothing for it).
  *
  * <p>One algorithm kept whole on purpose: the rounds, the guesses and the rule above are correct only
  * together, and a reviewer checks the rule against every line at once.
@@ -81,6 +83,7 @@ public final class Speculation {
     private long guessesUsed;
     private long calls;
     private long batches;
+    private long frameworkOnly;
 
     /** A guess waiting for the student's answer. */
     private static final class Guess {
@@ -122,6 +125,8 @@ public final class Speculation {
         final List<Guess> used = new ArrayList<>();
         final boolean reference;
         boolean unpredictable;
+        /** The stand-in calls this trace made (guessed, answered or predicted). */
+        int calls;
 
         Pixel(boolean reference) {
             this.reference = reference;
@@ -218,9 +223,26 @@ public final class Speculation {
         stable.clear();
     }
 
-    /** Calls, predictions (the reference image's), guesses and MULTI frames so far (for measurements). */
+    /**
+     * Calls, predictions (the reference image's), guesses, MULTI frames and pixels no stand-in was
+     * called for so far (for measurements).
+     */
     public String counts() {
-        return "calls " + calls + ", predictions " + predictions + ", guesses " + guessesUsed + ", batches " + batches;
+        return "calls " + calls + ", predictions " + predictions + ", guesses " + guessesUsed + ", batches " + batches
+                + ", framework-only pixels " + frameworkOnly;
+    }
+
+    /**
+     * Whether {@code p}, the reference's trace of a pixel, called no stand-in: then the pixel's
+     * colour is the trusted framework's alone, the same in every round, and it is not traced again
+     * (counted for {@link #counts}).
+     */
+    public boolean frameworkOnly(Pixel p) {
+        if (p.reference && p.calls == 0 && !p.unpredictable) {
+            frameworkOnly++;
+            return true;
+        }
+        return false;
     }
 
     /** A stand-in's call: answered, guessed, predicted for the reference image, or (outside a pixel's trace) made at once. */
@@ -229,6 +251,7 @@ public final class Speculation {
         if (suspended || pixel == null) {
             return process.call(cls, name, self, args);
         }
+        pixel.calls++;
         if (pixel.reference) {
             return predict(self, cls, name, args);
         }

@@ -112,8 +112,9 @@ public final class TrustedRender {
      * against the student's answers in one frame, until every pixel's trace rests on the
      * student's answers only. Failures are thrown in the order of the pixels, as a render one
      * call at a time would meet them. Before the rounds, every pixel is traced by the milestone's
-     * reference alone into {@code reference} (if not null), with {@code referenceShader}; returns
-     * how many pixels of it were set.
+     * reference alone into {@code reference} (if not null), with {@code referenceShader}; a pixel
+     * whose trace there called no stand-in is done with that colour ({@link Speculation#frameworkOnly}).
+     * Returns how many pixels of the reference image were set.
      */
     private static int band(Renderer r, Shader shader, IntersectionRecord rec, RenderStats stats, Image image,
             int y0, int y1, String name, Speculation spec, Image reference, Shader referenceShader) {
@@ -129,12 +130,20 @@ public final class TrustedRender {
         if (reference != null) {
             // The reference image: every pixel traced once by the milestone's reference here,
             // before any call of the band is sent; nothing of these traces leaves this JVM.
+            // A pixel whose trace called no stand-in is the trusted framework's alone: the rounds
+            // would trace it to the same colour, sending nothing, so it is done here.
             IntersectionRecord referenceRec = new IntersectionRecord();
             for (int i = 0; i < n; i++) {
-                spec.beginReference();
+                Speculation.Pixel p = spec.beginReference();
                 try {
-                    reference.set(i % w, y0 + i / w, r.pixel(i % w, y0 + i / w, referenceShader, referenceRec, stats));
+                    Color c = r.pixel(i % w, y0 + i / w, referenceShader, referenceRec, stats);
+                    reference.set(i % w, y0 + i / w, c);
                     set++;
+                    if (spec.frameworkOnly(p)) {
+                        colors[i] = c;
+                        done[i] = true;
+                        open--;
+                    }
                 } catch (Speculation.Unpredictable | RuntimeException | StackOverflowError e) {
                     // Left out: the grader renders the reference itself.
                 } finally {

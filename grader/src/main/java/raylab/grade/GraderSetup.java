@@ -50,6 +50,15 @@ final class GraderSetup {
     private static final ObjectMapper JSON = new ObjectMapper();
     /** Instructor-only packages kept out of the student's child JVM. */
     static final List<String> PRIVATE_PACKAGES = List.of("raylab/grade/", "raylab/numerics/", "raylab/study/");
+    /**
+     * The packages of the build's tools inside the shaded jar, the jars {@link #toolOfTheBuild}
+     * leaves out of a test run's cache: the study's charts and their PDF and logging libraries, the
+     * benchmarks'. No trusted JVM and no student process loads them; in framework.jar they were
+     * half of what every grading hashes ({@link CacheManifest#verify}) and every JVM's jar index.
+     */
+    static final List<String> TOOL_PACKAGES = List.of("org/apache/pdfbox/", "org/apache/fontbox/",
+            "org/apache/commons/logging/", "org/knowm/xchart/", "de/rototor/", "de/erichseifert/", "com/madgag/",
+            "org/openjdk/jmh/", "joptsimple/", "org/apache/commons/math3/", "org/pitest/", "org/slf4j/");
 
     final Path dir;
     final Path framework;
@@ -471,6 +480,12 @@ final class GraderSetup {
     private static boolean excluded(String entry, List<String> studentPrefixes) {
         for (String p : PRIVATE_PACKAGES) {
             if (entry.startsWith(p)) {
+                return true;
+            }
+        }
+        String unversioned = entry.replaceFirst("^META-INF/versions/\\d+/", "");
+        for (String p : TOOL_PACKAGES) {
+            if (unversioned.startsWith(p)) {
                 return true;
             }
         }
