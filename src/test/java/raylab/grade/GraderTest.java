@@ -100,11 +100,17 @@ class GraderTest {
 
     /** As above, with the given time limits (seconds) of a milestone's tests and of one scene render. */
     private JsonNode grade(Path sub, int milestoneSeconds, int sceneSeconds, String... extra) throws IOException {
+        return grade(sub, 2, milestoneSeconds, sceneSeconds, extra);
+    }
+
+    /** As above, with the given time limit (seconds of the student's CPU time) of one test too. */
+    private JsonNode grade(Path sub, int testSeconds, int milestoneSeconds, int sceneSeconds, String... extra)
+            throws IOException {
         Path out = dir.resolve("out");
         Files.createDirectories(out);
         ByteArrayOutputStream err = new ByteArrayOutputStream();
         String[] base = {"grade", sub.toString(), "--out", out.toString(), "--root", root.toString(), "--quiet",
-            "--test-timeout", "2", "--milestone-timeout", Integer.toString(milestoneSeconds),
+            "--test-timeout", Integer.toString(testSeconds), "--milestone-timeout", Integer.toString(milestoneSeconds),
             "--scene-timeout", Integer.toString(sceneSeconds),
             "--heap", "256", "--sandbox-user", sandboxUser(),
             // The graded scenes' variants of one fixed seed: a failure is reproduced by the same run.
@@ -286,9 +292,11 @@ class GraderTest {
     @Test
     @Order(6)
     void hostileSubmissionsLoopExhaustMemoryRecurseAndLeaveThreads() throws IOException {
-        // The endless loops run until their time limits, so these are short: 15 s for a milestone's
-        // tests and 8 s a scene (the whole of lambert, tests and renders, takes about 4 s here).
-        JsonNode r = grade(submission("hostile2"), 15, 8, "--milestone", "sphere", "--milestone", "box",
+        // The endless loops run until their time limits, so these are short: 1 s of the student's
+        // CPU time a test (each of a group's four stops before its process is given up burns
+        // that much; the reference's lambert tests take milliseconds), 15 s for a milestone's tests
+        // and 8 s a scene (the whole of lambert, tests and renders, takes about 4 s here).
+        JsonNode r = grade(submission("hostile2"), 1, 15, 8, "--milestone", "sphere", "--milestone", "box",
                 "--milestone", "triangle", "--milestone", "lambert");
         Map<String, double[]> m = perMilestone(r);
         assertZero(r, m, "sphere", "box", "triangle");
