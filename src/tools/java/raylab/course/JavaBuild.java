@@ -103,6 +103,20 @@ public final class JavaBuild {
     }
 
     /**
+     * javac's option for {@code a + b} on strings as {@code StringBuilder} calls, as the JDK
+     * builds its own {@code java.base}, instead of an {@code invokedynamic} call site that each
+     * JVM links the first time it runs it. A grading's child JVMs live a few seconds and run
+     * hundreds of such sites once: linked, they cost about 4 % of a grading's CPU (docs/testing.md,
+     * S8). The course's Maven build compiles raylab's classes with it (pom.xml, profile
+     * {@code course}; a starter's build keeps javac's default); the grader compiles its stand-ins
+     * and the starter's stubs with it. Not its tests: a hidden test's message would become
+     * constants of its pieces, and {@code HiddenText} withholds any visible text that holds one.
+     * A student's code is compiled as javac compiles it by default, in {@code check} and in the
+     * grader alike.
+     */
+    public static final String INLINE_CONCAT = "-XDstringConcat=inline";
+
+    /**
      * The one place raylab runs javac on files: in this JVM, as Java 17 ({@code --release 17}),
      * UTF-8, no warnings, no annotation processing, then {@code options} (such as {@code -g},
      * {@code -parameters}, {@code -implicit:none}, {@code -sourcepath}), into {@code outDir}

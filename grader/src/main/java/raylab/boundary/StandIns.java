@@ -130,8 +130,8 @@ public final class StandIns {
                 files.add(f);
             }
             List<Diagnostic<? extends JavaFileObject>> errors = JavaBuild.javac(files, classPath, out,
-                    List.of("-implicit:none", "-parameters")).stream().filter(d -> d.getKind() == Diagnostic.Kind.ERROR)
-                    .toList();
+                    List.of("-implicit:none", "-parameters", JavaBuild.INLINE_CONCAT)).stream()
+                    .filter(d -> d.getKind() == Diagnostic.Kind.ERROR).toList();
             if (!errors.isEmpty()) {
                 StringBuilder msg = new StringBuilder("the grader's stand-in classes do not compile:");
                 for (Diagnostic<? extends JavaFileObject> d : errors) {
