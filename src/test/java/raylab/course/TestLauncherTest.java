@@ -61,9 +61,9 @@ class TestLauncherTest {
         assertTrue(byMethod.get("fails").message().contains("one is not two"), byMethod.get("fails").message());
     }
 
-    @Test
-    void systemExitInATestFailsItAndTheRestClosed() throws Exception {
-        Path classes = compile("ExitTest", """
+    /** Three tests in order: one that passes, one that ends its JVM (after a forged report line), one never run. */
+    private Path exitTest() throws Exception {
+        return compile("ExitTest", """
                 package demo;
                 import org.junit.jupiter.api.*;
                 @TestMethodOrder(MethodOrderer.MethodName.class)
@@ -73,6 +73,11 @@ class TestLauncherTest {
                     @Test void c_never() { }
                 }
                 """);
+    }
+
+    @Test
+    void systemExitInATestFailsItAndTheRestClosed() throws Exception {
+        Path classes = exitTest();
         List<TestResult> expected = TestLauncher.discover(classPath(classes), classes, List.of(), List.of(), dir);
         TestLauncher.Run o = TestLauncher.run(classPath(classes), classes, List.of(), List.of(),
                 new TestLauncher.Limits(256, Duration.ofSeconds(60), 5, 1024), dir, expected);
@@ -82,6 +87,41 @@ class TestLauncherTest {
         assertEquals(TestResult.Status.PASSED, s.get("a_fine"));
         assertEquals(TestResult.Status.CRASHED, s.get("b_exits"));
         assertEquals(TestResult.Status.MISSING, s.get("c_never"));
+    }
+
+    /**
+     * A trusted JVM (it runs no student code) that ends before it starts a test, here because it
+     * cannot start at all, fails every test as the grading's failure, not the student's; the same
+     * JVM for student code ({@code check}), and a trusted JVM that ends during a test, stay the
+     * student's.
+     */
+    @Test
+    void aTrustedJvmThatEndsBeforeItsFirstTestIsTheGradingsFailure() throws Exception {
+        Path classes = exitTest();
+        List<TestResult> expected = TestLauncher.discover(classPath(classes), classes, List.of(), List.of(), dir);
+        assertEquals(3, expected.size(), "discovered: " + expected);
+        List<String> badOption = List.of("-XX:+RaylabNoSuchOption");
+        TestLauncher.Run trusted = TestLauncher.runTrusted(classPath(classes), classes, List.of(),
+                TestLauncher.Limits.DEFAULT, dir, expected, badOption);
+        assertEquals(3, trusted.results().size(), "every test reported: " + trusted.results());
+        for (TestResult r : trusted.results()) {
+            assertTrue(r.gradingFailed(), "the grading's failure: " + r);
+            assertTrue(r.message().contains("(exit status 1) before it started a test"), r.message());
+        }
+        TestLauncher.Run student = TestLauncher.run(classPath(classes), classes, List.of(), List.of(),
+                TestLauncher.Limits.DEFAULT, dir, expected, List.of(), badOption);
+        for (TestResult r : student.results()) {
+            assertFalse(r.gradingFailed(), "a JVM that runs student code: the student's run: " + r);
+            assertEquals(TestResult.Status.MISSING, r.status(), r.toString());
+        }
+        Map<String, TestResult> ended = TestLauncher.runTrusted(classPath(classes), classes, List.of(),
+                TestLauncher.Limits.DEFAULT, dir, expected, List.of()).results().stream()
+                .collect(Collectors.toMap(TestResult::method, t -> t));
+        assertEquals(TestResult.Status.PASSED, ended.get("a_fine").status(), ended.toString());
+        assertEquals(TestResult.Status.CRASHED, ended.get("b_exits").status(), ended.toString());
+        assertEquals(TestResult.Status.MISSING, ended.get("c_never").status(), ended.toString());
+        assertFalse(ended.get("b_exits").gradingFailed() || ended.get("c_never").gradingFailed(),
+                "a test had started: as before: " + ended);
     }
 
     /** The report channel: only lines with the key's MAC and the next sequence number count. */

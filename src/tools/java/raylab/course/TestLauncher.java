@@ -151,7 +151,9 @@ public final class TestLauncher {
      * <p>There every limit of the student's is in the student's own time (each call's, each
      * test's: {@link StudentTime}; the renders'), so the JVM's wall clock is only a guard, at
      * {@link #GUARD_FACTOR} × {@code limits.wallClock()}: when it fires, the tests not reported
-     * fail as a grading failure ({@link TestResult#gradingFailed()}), not as the student's.
+     * fail as a grading failure ({@link TestResult#gradingFailed()}), not as the student's. So do
+     * all of them when the JVM ends before it starts a test (it did not start, or the course's
+     * tests could not be discovered).
      */
     public static Run runTrusted(List<Path> classPath, Path testClasses, List<String> classes, Limits limits,
             Path workDir, List<TestResult> expected, List<String> jvmOptions) throws IOException {
@@ -306,6 +308,11 @@ public final class TestLauncher {
             if (!containerFailures.isEmpty() && problem.isEmpty()) {
                 problem = String.join("; ", containerFailures);
             }
+            // A trusted JVM runs no student code: one that ended before it said a word of the
+            // protocol (no test started, none reported) failed to start or to discover the course's
+            // tests, which is the grading's failure (a bad JVM option, a broken test class), not the student's.
+            boolean silent = exited && !ended[0] && results.isEmpty() && current[0] == null && stuck[0] == null
+                    && stuckIds.isEmpty() && containerFailures.isEmpty();
             List<TestResult> out = new ArrayList<>();
             String cutOff = null;
             for (TestResult e : expected) {
@@ -313,6 +320,9 @@ public final class TestLauncher {
                 if (r == null && wallIsGuard && !exited) {
                     r = e.gradingFailure("the grader's test JVM was " + problem + ", although every limit"
                             + " of the student's code is in its own time: the machine or the grader was too slow");
+                } else if (r == null && wallIsGuard && silent) {
+                    r = e.gradingFailure("the grader's test JVM ended (exit status " + p.exitValue() + ") before it"
+                            + " started a test: it did not start, or the course's tests could not be discovered");
                 } else if (r == null) {
                     String why;
                     TestResult.Status s;
