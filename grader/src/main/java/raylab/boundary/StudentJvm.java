@@ -35,6 +35,15 @@ public final class StudentJvm {
     private Path stderr;
     /** How often a JVM was started (those killed from outside not counted). */
     private int starts;
+    /**
+     * Whether a JVM of this process has said HELLO. Until one has, no code of the student's has
+     * run (the server loads none before it), and the run folder holds nothing the student's code
+     * left: a JVM that ends before its HELLO is then the grader's command, its sandbox or the
+     * machine failing, never the student's code.
+     */
+    private boolean greeted;
+    /** Why the first JVM did not start, once it failed twice: every later start fails so too. */
+    private String cannotStart;
 
     StudentJvm(StudentProcess.Config config) {
         this.config = config;
@@ -77,9 +86,52 @@ public final class StudentJvm {
 
     /**
      * Starts a fresh JVM and reads its HELLO line; fails with a {@link StudentTimeout} when the
-     * student's restarts are used up, with a {@link StudentException} when it does not start.
+     * student's restarts are used up, with a {@link StudentException} when a restart does not
+     * start (what the student's code left in its run folder can stop it), and with a
+     * {@link GradingFailure} when no JVM of this process has started yet and two in a row do not
+     * (no code of the student's has run: the command, the sandbox or the machine failed).
      */
     void start() throws IOException {
+        if (cannotStart != null) {
+            throw new GradingFailure(cannotStart);
+        }
+        try {
+            startOnce();
+        } catch (NotStarted first) {
+            if (greeted) {
+                throw first.asStudents();
+            }
+            starts--;
+            try {
+                startOnce(); // once more: a fork or a mount that failed for a moment
+            } catch (NotStarted again) {
+                starts--;
+                cannotStart = "the student process did not start (" + (again.why.isEmpty() ? "no HELLO line" : again.why)
+                        + ") before any code of the student's ran in it: the grader's command, its sandbox or the"
+                        + " machine failed, not the student's code";
+                throw new GradingFailure(cannotStart);
+            }
+        }
+        greeted = true;
+    }
+
+    /** A JVM that ended or said something else before its HELLO line, and the first line of its standard error. */
+    private static final class NotStarted extends IOException {
+        private static final long serialVersionUID = 1L;
+        final String why;
+
+        NotStarted(String why) {
+            super(why);
+            this.why = why;
+        }
+
+        StudentException asStudents() {
+            return new StudentException("java.lang.Error", "the student process did not start"
+                    + (why.isEmpty() ? "" : ": " + why), List.of(), "");
+        }
+    }
+
+    private void startOnce() throws IOException {
         if (starts > config.maxRestarts()) {
             throw new StudentTimeout("your code was stopped " + starts + " times (too slow, or it crashed), so"
                     + " the grader does not run it again in this milestone");
@@ -90,7 +142,12 @@ public final class StudentJvm {
         if (config.directory() != null) {
             pb.directory(config.directory().toFile());
         }
-        proc = pb.start();
+        try {
+            proc = pb.start();
+        } catch (IOException e) {
+            dead();
+            throw new NotStarted("it cannot be run: " + e.getMessage());
+        }
         in = new DataInputStream(new BufferedInputStream(proc.getInputStream(), 1 << 16));
         out = new BufferedOutputStream(proc.getOutputStream(), 1 << 16);
         // The HELLO line: anything else means the JVM did not start as a student server.
@@ -101,8 +158,7 @@ public final class StudentJvm {
                 if (b < 0 || line.size() > 200) {
                     String why = firstLineOfStderr();
                     dead();
-                    throw new StudentException("java.lang.Error", "the student process did not start"
-                            + (why.isEmpty() ? "" : ": " + why), List.of(), "");
+                    throw new NotStarted(why);
                 }
                 line.write(b);
             }
@@ -110,8 +166,9 @@ public final class StudentJvm {
             clock.startEnds();
         }
         if (!line.toString(StandardCharsets.US_ASCII).equals(Wire.HELLO)) {
+            String why = firstLineOfStderr();
             dead();
-            throw new StudentException("java.lang.Error", "the student process did not start", List.of(), "");
+            throw new NotStarted(why);
         }
     }
 
