@@ -1,5 +1,6 @@
 package raylab.boundary;
 
+import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
@@ -35,6 +36,34 @@ class TrustedRenderTest {
             assertTrue(Files.isRegularFile(Path.of(png + ".timeout")), png + ".timeout is written");
             assertFalse(Files.exists(png), png + " is not written");
             assertFalse(Files.exists(Path.of(png + ".err")), png + ".err is not written");
+        }
+    }
+
+    /**
+     * Whose a scene's failure is: the student's code's (its exception, its time, anything else the
+     * render threw) or the grading's, marked beside the image (a {@link GradingFailure}; this JVM's
+     * own memory or stack, since it runs no code of the student's).
+     */
+    @Test
+    void theRenderJvmsOwnMemoryIsMarkedAsTheGradingsFailure() throws Exception {
+        record Case(Throwable thrown, String line, boolean graders) {
+        }
+        List<Case> cases = List.of(
+                new Case(new StudentException("java.lang.OutOfMemoryError", "your code ran out of memory", List.of(), ""),
+                        null, false),
+                new Case(new IllegalArgumentException("bad normal"), "java.lang.IllegalArgumentException: bad normal", false),
+                new Case(new GradingFailure("killed twice"), "killed twice", true),
+                new Case(new OutOfMemoryError("Java heap space"),
+                        "the grader's render JVM: java.lang.OutOfMemoryError: Java heap space", true),
+                new Case(new StackOverflowError(), "the grader's render JVM: java.lang.StackOverflowError", true));
+        for (int i = 0; i < cases.size(); i++) {
+            Case c = cases.get(i);
+            Path out = dir.resolve("scene" + i + ".png");
+            String line = TrustedRender.failure(c.thrown(), out);
+            if (c.line() != null) {
+                assertEquals(c.line(), line, c.thrown().toString());
+            }
+            assertEquals(c.graders(), Files.exists(Path.of(out + GradingFailure.RENDER_MARKER)), c.thrown().toString());
         }
     }
 }

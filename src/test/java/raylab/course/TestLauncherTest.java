@@ -90,10 +90,10 @@ class TestLauncherTest {
     }
 
     /**
-     * A trusted JVM (it runs no student code) that ends before it starts a test, here because it
-     * cannot start at all, fails every test as the grading's failure, not the student's; the same
-     * JVM for student code ({@code check}), and a trusted JVM that ends during a test, stay the
-     * student's.
+     * A trusted JVM (it runs no student code) that ends early fails every test it did not report as
+     * the grading's failure, not the student's: before its first test (here it cannot start at
+     * all) and during a test (here a test ends the JVM); the same JVM for student code
+     * ({@code check}) stays the student's.
      */
     @Test
     void aTrustedJvmThatEndsBeforeItsFirstTestIsTheGradingsFailure() throws Exception {
@@ -118,10 +118,33 @@ class TestLauncherTest {
                 TestLauncher.Limits.DEFAULT, dir, expected, List.of()).results().stream()
                 .collect(Collectors.toMap(TestResult::method, t -> t));
         assertEquals(TestResult.Status.PASSED, ended.get("a_fine").status(), ended.toString());
-        assertEquals(TestResult.Status.CRASHED, ended.get("b_exits").status(), ended.toString());
-        assertEquals(TestResult.Status.MISSING, ended.get("c_never").status(), ended.toString());
-        assertFalse(ended.get("b_exits").gradingFailed() || ended.get("c_never").gradingFailed(),
-                "a test had started: as before: " + ended);
+        assertFalse(ended.get("a_fine").gradingFailed(), "reported before the JVM ended: " + ended);
+        assertTrue(ended.get("b_exits").gradingFailed(), "the grading's failure: " + ended.get("b_exits"));
+        assertTrue(ended.get("b_exits").message().contains("ended early (exit status 0) during this test"),
+                ended.get("b_exits").message());
+        assertTrue(ended.get("c_never").gradingFailed(), "the grading's failure: " + ended.get("c_never"));
+        assertTrue(ended.get("c_never").message().contains("ended early (exit status 0) before this test"),
+                ended.get("c_never").message());
+    }
+
+    /**
+     * A test JVM behind the process boundary runs no code of the student's: its own memory or stack
+     * running out is the grading's failure; in a JVM that runs the student's code ({@code check}),
+     * and for any other exception, it stays the test's failure.
+     */
+    @Test
+    void aTrustedJvmsOwnMemoryIsTheGradingsFailure() {
+        assertTrue(TestMain.gradersFault(new OutOfMemoryError("Java heap space"), true));
+        assertTrue(TestMain.gradersFault(new StackOverflowError(), true));
+        assertFalse(TestMain.gradersFault(new OutOfMemoryError("Java heap space"), false));
+        assertFalse(TestMain.gradersFault(new AssertionError("expected: <4.0> but was: <6.0>"), true));
+        assertFalse(TestMain.gradersFault(new IllegalStateException("the student's answer"), true));
+        assertFalse(TestMain.gradersFault(null, true));
+        assertTrue(TestMain.gradersFault(new GraderFaultError(), false));
+    }
+
+    private static final class GraderFaultError extends RuntimeException implements GraderFault {
+        private static final long serialVersionUID = 1L;
     }
 
     /** The report channel: only lines with the key's MAC and the next sequence number count. */

@@ -76,5 +76,24 @@ class GradingStatusValueTest {
         assertEquals("the student process was killed twice", r.get(0).error());
         assertFalse(r.get(1).gradingFailed(), r.get(1).toString());
         assertEquals("GradingFailure: thrown by the student's code", r.get(1).error());
+        assertTrue(SceneGrading.gradingsFailure(r.get(0)), "marked");
+        assertFalse(SceneGrading.gradingsFailure(r.get(1)), "the student's error");
+    }
+
+    /**
+     * A scene the render JVM left with neither an image nor an error (it crashed, ran out of its
+     * own memory or was stopped by its guard: it runs no code of the student's) is the grading's
+     * failure; one stopped at the renders' limit in the student's time stays the student's.
+     */
+    @Test
+    void aSceneTheRenderJvmDidNotFinishIsTheGradingsFailure(@TempDir Path dir) throws Exception {
+        Path unfinished = dir.resolve("scene0.png");
+        Path late = dir.resolve("scene1.png");
+        Files.writeString(Path.of(late + ".timeout"), "");
+        List<SceneGrading.Render> r = SceneGrading.read(List.of(unfinished, late));
+        assertEquals(null, r.get(0).image());
+        assertTrue(SceneGrading.gradingsFailure(r.get(0)), r.get(0).toString());
+        assertTrue(r.get(1).late(), r.get(1).toString());
+        assertFalse(SceneGrading.gradingsFailure(r.get(1)), r.get(1).toString());
     }
 }

@@ -308,11 +308,14 @@ public final class TestLauncher {
             if (!containerFailures.isEmpty() && problem.isEmpty()) {
                 problem = String.join("; ", containerFailures);
             }
-            // A trusted JVM runs no student code: one that ended before it said a word of the
-            // protocol (no test started, none reported) failed to start or to discover the course's
-            // tests, which is the grading's failure (a bad JVM option, a broken test class), not the student's.
-            boolean silent = exited && !ended[0] && results.isEmpty() && current[0] == null && stuck[0] == null
-                    && stuckIds.isEmpty() && containerFailures.isEmpty();
+            // A trusted JVM runs no student code (the student's runs in its student process): one
+            // that ended before its END line, other than by stopping a test stuck in the student's
+            // code (a STUCK line), failed on the grading's side, not the student's. Before it said a
+            // word of the protocol it did not start or could not discover the course's tests (a bad
+            // JVM option, a broken test class); later it crashed or ran out of its own memory.
+            boolean crashed = exited && !ended[0] && stuck[0] == null;
+            boolean silent = crashed && results.isEmpty() && current[0] == null && stuckIds.isEmpty()
+                    && containerFailures.isEmpty();
             List<TestResult> out = new ArrayList<>();
             String cutOff = null;
             for (TestResult e : expected) {
@@ -323,6 +326,11 @@ public final class TestLauncher {
                 } else if (r == null && wallIsGuard && silent) {
                     r = e.gradingFailure("the grader's test JVM ended (exit status " + p.exitValue() + ") before it"
                             + " started a test: it did not start, or the course's tests could not be discovered");
+                } else if (r == null && wallIsGuard && crashed && stuckCase(stuckIds, e.id()) == null
+                        && stuckIds.stream().noneMatch(st -> e.id().startsWith(classOf(st) + "/"))) {
+                    r = e.gradingFailure("the grader's test JVM ended early (exit status " + p.exitValue() + ")"
+                            + (e.id().equals(current[0]) ? " during this test" : " before this test")
+                            + ": it runs no code of the student's, so a crash or its own memory, not the student's code");
                 } else if (r == null) {
                     String why;
                     TestResult.Status s;

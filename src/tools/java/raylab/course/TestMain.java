@@ -237,7 +237,7 @@ public final class TestMain {
                     }
                     return;
                 }
-                boolean graders = r.getThrowable().orElse(null) instanceof GraderFault;
+                boolean graders = gradersFault(r.getThrowable().orElse(null), System.getProperty("raylab.boundary") != null);
                 send(t, s, s == TestResult.Status.PASSED ? "" : firstLines(r), ms, s != TestResult.Status.PASSED && graders);
             }
 
@@ -287,6 +287,15 @@ public final class TestMain {
         }
         java.nio.file.Files.writeString(list.resolveSibling("millis.txt"),
                 Long.toString((System.nanoTime() - t0) / 1_000_000));
+    }
+
+    /**
+     * Whether a test that ended with {@code thrown} failed on the grading's side: a
+     * {@link GraderFault}, or, behind the process boundary (where this JVM runs no code of the
+     * student's), this JVM's own memory or stack running out ({@link VirtualMachineError}).
+     */
+    static boolean gradersFault(Throwable thrown, boolean behindBoundary) {
+        return thrown instanceof GraderFault || (behindBoundary && thrown instanceof VirtualMachineError);
     }
 
     /** The process boundary, which {@code --then-boundary} and {@code --then-render} need. */

@@ -225,6 +225,24 @@ public final class TrustedRender {
     private static boolean timed;
 
     /**
+     * The error line of a scene whose render ended with {@code t}, and beside {@code out} the
+     * marker ({@link GradingFailure#RENDER_MARKER}) when that is the grading's failure: a
+     * {@link GradingFailure}, or this JVM's own memory or stack running out (a
+     * {@link VirtualMachineError}: it runs no code of the student's, whose running out of memory in
+     * the student process is a {@link StudentException}).
+     */
+    static String failure(Throwable t, Path out) throws java.io.IOException {
+        if (t instanceof StudentException || t instanceof StudentTimeout) {
+            return t.getMessage();
+        }
+        if (t instanceof GradingFailure || t instanceof VirtualMachineError) {
+            Files.writeString(Path.of(out + GradingFailure.RENDER_MARKER), "", StandardCharsets.UTF_8);
+            return t instanceof GradingFailure ? t.getMessage() : "the grader's render JVM: " + t;
+        }
+        return t.toString();
+    }
+
+    /**
      * Renders the scenes of {@code args} (triples SCENE.json OUT.png NAME) one after the other with
      * this JVM's student process, batched by the milestone's reference named in the system
      * property {@code raylab.boundary.references} if it is set. A scene that fails leaves
@@ -287,13 +305,8 @@ public final class TrustedRender {
                 Files.deleteIfExists(out);
                 Files.writeString(Path.of(out + ".timeout"), "", StandardCharsets.UTF_8);
                 continue;
-            } catch (StudentException | StudentTimeout e) {
-                err = e.getMessage();
-            } catch (GradingFailure e) {
-                err = e.getMessage();
-                Files.writeString(Path.of(out + GradingFailure.RENDER_MARKER), "", StandardCharsets.UTF_8);
             } catch (Throwable t) {
-                err = t.toString();
+                err = failure(t, out);
             }
             if (err != null) {
                 Files.deleteIfExists(out);

@@ -171,6 +171,17 @@ final class SceneGrading {
     }
 
     /**
+     * Whether a scene without an image is the grading's failure: its render marked its error so
+     * ({@link GradingFailure#RENDER_MARKER}), or it has no error at all and was not stopped at the
+     * renders' limit, so the render JVM did not finish it. That JVM runs no code of the student's
+     * (the student's runs in its student process, whose failures are errors): its crash, its
+     * memory and its wall-clock guard are the grading's, not the student's.
+     */
+    static boolean gradingsFailure(Render r) {
+        return !r.late() && (r.gradingFailed() || r.error() == null || r.error().isEmpty());
+    }
+
+    /**
      * M's scene items: each render compared with its reference ({@link Render#late}: stopped at
      * the time limit; {@link Renders#timedOut}: the whole run was).
      */
@@ -192,22 +203,21 @@ final class SceneGrading {
             if (refBytes == null) {
                 msg = "grader setup problem: no reference image " + sc.reference();
             } else if (mine == null || r.error() != null) {
-                boolean guard = !r.late() && !r.gradingFailed() && errLine.isEmpty() && !renders.outOfMemory()
-                        && renders.timedOut();
-                if (!r.late() && (r.gradingFailed() || guard)) {
+                if (gradingsFailure(r)) {
                     status = GradingStatus.GRADING_FAILED;
                 }
                 msg = r.late() ? "your code used more than " + limit.toSeconds()
                                 + " s of CPU time in the renders and was stopped (an endless loop, or far too slow?)"
                         : r.gradingFailed() ? GradingStatus.message(errLine)
                         : !errLine.isEmpty() ? raylab.course.Explain.renderFailure(errLine, studentFiles)
-                        : renders.outOfMemory() ? "the render ran out of memory (" + run.options().sceneHeapMb()
-                                + " MB): look for something that grows with every ray, such as a list or an array"
-                                + " allocated per hit and kept"
+                        : renders.outOfMemory() ? GradingStatus.message("the grader's render JVM ran out of its memory ("
+                                + run.options().sceneHeapMb() + " MB) before this scene was rendered: the student's code"
+                                + " runs in a process of its own, whose memory is its own")
                         : renders.timedOut() ? GradingStatus.message("the grader's render JVM was stopped by its wall-clock"
                                 + " guard before this scene was rendered, although the renders' limit is in the student's"
                                 + " CPU time: the machine or the grader was too slow")
-                        : "no image was rendered (the render JVM ended early: System.exit or a crash)";
+                        : GradingStatus.message("the grader's render JVM ended early, before this scene was rendered:"
+                                + " it runs no code of the student's (a crash, or the machine's memory)");
                 shown = new GradeReport.Images(null, refBytes, null, "");
             } else {
                 try {
