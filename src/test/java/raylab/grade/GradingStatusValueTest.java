@@ -35,6 +35,39 @@ class GradingStatusValueTest {
         assertEquals(GradingStatus.GRADED, GradingStatus.of(null));
     }
 
+    /**
+     * grade-all reads a student's status from the Gradescope results.json the grading wrote: a
+     * value in its {@code extra_data} (the failed parts' numbers), not the text of the tests,
+     * which holds the student's output too.
+     */
+    @Test
+    void gradescopesResultsCarryTheStatusAsAValue() throws Exception {
+        com.fasterxml.jackson.databind.ObjectMapper json = new com.fasterxml.jackson.databind.ObjectMapper();
+        // The student's code printed the grader's sentence: its test failed, and was graded.
+        GradeReport.Test printed = new GradeReport.Test("sphere", "hits", GradeReport.Kind.VISIBLE, 2, 0, false,
+                "expected: <4.0> but was: <6.0>", GradingStatus.message("printed by the student"), "visible", 1,
+                "SphereTest.java", null, "", GradingStatus.GRADED);
+        GradeReport.Test passed = new GradeReport.Test("sphere", "misses", GradeReport.Kind.VISIBLE, 2, 2, true, "", "",
+                "visible", 1, "SphereTest.java", null, "", GradingStatus.GRADED);
+        GradeReport.Test failed = new GradeReport.Test("sphere", "scenes/spheres.json", GradeReport.Kind.SCENE, 2, 0, false,
+                GradingStatus.message("the grader's render JVM ran out of its memory"), "", "visible", 1,
+                "scenes/spheres.json", null, "", GradingStatus.GRADING_FAILED);
+        com.fasterxml.jackson.databind.JsonNode graded = json.readTree(Reports.gradescope(new GradeReport(List.of(
+                new GradeReport.Milestone("sphere", "Sphere", List.of(), List.of(printed, passed))), List.of(), List.of(),
+                List.of(), 1)));
+        assertTrue(graded.get("tests").get(0).get("output").asText().contains(GradingStatus.STUDENT_MESSAGE),
+                "the student's output is shown: " + graded);
+        assertEquals(GradingStatus.GRADED, GradingStatus.ofGradescope(graded), "its text decides nothing: " + graded);
+        assertFalse(graded.has("extra_data"), "nothing failed: " + graded);
+        com.fasterxml.jackson.databind.JsonNode partly = json.readTree(Reports.gradescope(new GradeReport(List.of(
+                new GradeReport.Milestone("sphere", "Sphere", List.of(), List.of(passed, failed))), List.of(), List.of(),
+                List.of(), 1)));
+        assertEquals(GradingStatus.GRADING_FAILED, GradingStatus.ofGradescope(partly), partly.toString());
+        assertEquals("[\"1.2\"]", partly.get("extra_data").get(GradingStatus.FAILED_TESTS).toString(), partly.toString());
+        com.fasterxml.jackson.databind.JsonNode whole = json.readTree(Reports.gradescope(Grader.failed("no reference", 1)));
+        assertEquals(GradingStatus.GRADING_FAILED, GradingStatus.ofGradescope(whole), whole.toString());
+    }
+
     @Test
     void copiesKeepTheStatus() {
         GradeReport.Test t = report("m", GradingStatus.GRADING_FAILED).milestones().get(0).tests().get(0);

@@ -53,19 +53,22 @@ public enum GradingStatus {
     }
 
     /**
-     * The status of a Gradescope results.json as {@code raylab grade} writes it (tests[].output),
-     * for grade-all, which has only that file of each student's grading: Gradescope's format has
-     * no field for it, so the one message every failed part starts with is the carrier there.
+     * The key of a Gradescope results.json's {@code extra_data} (stored by Gradescope, shown to no
+     * one) that lists the numbers of the tests whose grading failed; {@code raylab grade} writes
+     * it only when there is one.
+     */
+    public static final String FAILED_TESTS = "grading_failed_tests";
+
+    /**
+     * The status of a Gradescope results.json as {@code raylab grade} writes it, for grade-all,
+     * which has only that file of each student's grading: the values in {@code extra_data} (the
+     * whole grading failed: {@code grading_failed}; some of its parts: {@link #FAILED_TESTS}),
+     * never the tests' messages, which hold the student's output too.
      */
     public static GradingStatus ofGradescope(JsonNode results) {
-        JsonNode tests = results == null ? null : results.get("tests");
-        if (tests != null) {
-            for (JsonNode t : tests) {
-                JsonNode o = t.get("output");
-                if (o != null && o.asText().contains(STUDENT_MESSAGE)) {
-                    return GRADING_FAILED;
-                }
-            }
+        JsonNode extra = results == null ? null : results.get("extra_data");
+        if (extra != null && (extra.path("grading_failed").asBoolean(false) || extra.path(FAILED_TESTS).size() > 0)) {
+            return GRADING_FAILED;
         }
         return GRADED;
     }

@@ -129,6 +129,7 @@ public final class Reports {
         root.put("visibility", "visible");
         root.put("stdout_visibility", "hidden");
         List<Map<String, Object>> tests = new ArrayList<>();
+        List<String> gradingFailed = new ArrayList<>();
         int mi = 0;
         for (GradeReport.Milestone m : r.milestones()) {
             mi++;
@@ -156,9 +157,17 @@ public final class Reports {
                 j.put("tags", List.of(m.id(), t.kind().label()));
                 j.put("visibility", t.visibility());
                 tests.add(j);
+                if (t.status() == GradingStatus.GRADING_FAILED) {
+                    gradingFailed.add((String) j.get("number"));
+                }
             }
         }
         root.put("tests", tests);
+        if (!gradingFailed.isEmpty()) {
+            // The parts whose grading failed, as a value (grade-all's status column): their
+            // messages hold the student's output too, so their text decides nothing.
+            root.put("extra_data", Map.of(GradingStatus.FAILED_TESTS, gradingFailed));
+        }
         return JSON.writeValueAsString(root);
     }
 
