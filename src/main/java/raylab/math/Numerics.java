@@ -3,9 +3,9 @@ package raylab.math;
 /**
  * Named helpers for floating-point error, after pbrt: the relative error bound gamma(n), the
  * error bound of a computed hit point and the offset of a ray origin off a surface by that
- * bound, as the reference {@code Shadows.isShadowed} uses them. {@code docs/numerics.md}
- * explains each; the offsets used before this one are kept only by the study
- * ({@code raylab.study.EarlierOffsets}).
+ * bound, as the reference {@code Shadows.isShadowed} uses them. The course's numerics notes
+ * (in the instructor's repository, beside the oracle that measures them) explain each; the
+ * offsets used before this one are kept only by the study, in the instructor's repository.
  */
 public final class Numerics {
     /** Unit roundoff of double precision: 2^-53. */
@@ -36,7 +36,7 @@ public final class Numerics {
 
     // ---- The shadow-ray offset: a bound on the error of each computed hit point (pbrt-v4 style) ----
 
-    /** Rounding steps the bound of {@link #pointError} allows for (see docs/numerics.md). */
+    /** Rounding steps the bound of {@link #pointError} allows for (the course's numerics notes). */
     public static final int POINT_ERROR_STEPS = 8;
 
     /**

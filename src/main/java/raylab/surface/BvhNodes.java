@@ -21,7 +21,7 @@ import raylab.ray.Ray;
  * popped if it lies beyond the closest hit found meanwhile. Stacks are per-thread arrays (one
  * frame per nested tree), so tracing a ray allocates nothing.
  *
- * <p>Public for the packed mesh engine ({@code raylab.mesh}, docs/mesh-engine.md), which traces a
+ * <p>Public for the packed mesh engine (the instructor's module {@code raylab.mesh}), which traces a
  * mesh's tree with its own traversal: the arrays are the mesh's, to be read, never written.
  */
 public final class BvhNodes {

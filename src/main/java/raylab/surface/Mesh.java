@@ -18,7 +18,7 @@ import raylab.ray.Ray;
  *
  * <p>Storage is packed: the vertices of all triangles in one {@code double[]} (nine numbers per
  * triangle, in the tree's leaf order) and the tree in one {@code int[]} ({@link BvhNodes}), no
- * object per triangle or node. The leaf test is one of two kernels (docs/mesh-engine.md):
+ * object per triangle or node. The leaf test is one of two kernels:
  * <ul>
  * <li>the student kernel: {@link Triangle} objects made once per mesh, in leaf order, each asked
  * its own {@code intersect} through the tree. A bug in a student's {@code Triangle.intersect}

@@ -3,7 +3,7 @@ package raylab.surface;
 import raylab.material.Material;
 
 /**
- * A build's packed mesh engine (docs/mesh-engine.md): a service, listed in
+ * A build's packed mesh engine: a service, listed in
  * {@code META-INF/services/raylab.surface.PackedEngine}. The instructor's build provides one (the
  * mesh engine module, {@code raylab.mesh.PackedTrianglesProvider}); the starter has none, so its
  * meshes always use the student kernel. {@link Mesh} uses a provider only when it, {@code Mesh}

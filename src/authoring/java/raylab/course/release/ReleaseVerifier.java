@@ -189,6 +189,68 @@ public final class ReleaseVerifier {
         return named;
     }
 
+    /** A page of the project's docs named by its path, as comments and handouts name them. */
+    private static final Pattern DOC_PATH = Pattern.compile("(?<![\\w/.-])(docs/[\\w./-]*\\.md)");
+    /** A Markdown link to a Markdown file of the project (no scheme, relative to the linking file). */
+    private static final Pattern MD_LINK = Pattern.compile("\\]\\(([^)#:\\s]+\\.md)(#[^)]*)?\\)");
+    /** The starter's text files, by name: the rest (images, jars) names no page. */
+    private static final Pattern TEXT_FILE = Pattern.compile(".*\\.(java|md|xml|json|txt|properties|cmd|sh)|raylab|mvnw");
+
+    /**
+     * Lines of the starter's text files ({@code texts}: path to content) that name a page of
+     * {@code docs/} the starter does not have, or link from a Markdown file to one it does not
+     * have: "FILE:LINE names docs/X.md, which the starter does not have". A student who follows
+     * such a pointer finds nothing (the instructor's pages, such as the numerics notes, stay out).
+     */
+    static List<String> unshippedDocs(Map<String, String> texts) {
+        List<String> out = new ArrayList<>();
+        for (Map.Entry<String, String> e : new java.util.TreeMap<>(texts).entrySet()) {
+            String rel = e.getKey();
+            String[] lines = e.getValue().split("\n", -1);
+            for (int i = 0; i < lines.length; i++) {
+                Matcher m = DOC_PATH.matcher(lines[i]);
+                while (m.find()) {
+                    if (!texts.containsKey(m.group(1))) {
+                        out.add(rel + ":" + (i + 1) + " names " + m.group(1) + ", which the starter does not have");
+                    }
+                }
+                if (!rel.endsWith(".md")) {
+                    continue;
+                }
+                Matcher l = MD_LINK.matcher(lines[i]);
+                while (l.find()) {
+                    Path parent = Path.of(rel).getParent();
+                    String target = (parent == null ? Path.of(l.group(1)) : parent.resolve(l.group(1))).normalize()
+                            .toString().replace('\\', '/');
+                    if (!texts.containsKey(target)) {
+                        out.add(rel + ":" + (i + 1) + " links to " + target + ", which the starter does not have");
+                    }
+                }
+            }
+        }
+        return out;
+    }
+
+    /** {@link #unshippedDocs(Map)} of the text files among {@code files} (path to bytes, as {@link Release#build} makes them). */
+    static List<String> unshippedDocsOf(Map<String, byte[]> files) {
+        Map<String, String> texts = new HashMap<>();
+        files.forEach((rel, bytes) -> {
+            if (TEXT_FILE.matcher(rel.substring(rel.lastIndexOf('/') + 1)).matches()) {
+                texts.put(rel, new String(bytes, StandardCharsets.UTF_8));
+            }
+        });
+        return unshippedDocs(texts);
+    }
+
+    /** {@link #unshippedDocsOf} the starter written in {@code starter}. */
+    static List<String> unshippedDocs(Path starter, List<String> files) throws IOException {
+        Map<String, byte[]> bytes = new HashMap<>();
+        for (String rel : files) {
+            bytes.put(rel, Files.readAllBytes(starter.resolve(rel)));
+        }
+        return unshippedDocsOf(bytes);
+    }
+
     /**
      * Providers that a services file of the starter lists and whose source the starter lacks
      * ({@code ServiceLoader} would stop every command there): "FILE:LINE lists NAME, ...".
@@ -325,6 +387,8 @@ public final class ReleaseVerifier {
                 hiddenClasses.size() + " hidden test names looked for"));
 
         out.add(Check.of("services files list only the starter's classes", unshippedProviders(starter, files), ""));
+        out.add(Check.of("every page of docs/ that a file names or links is in the starter", unshippedDocs(starter, files),
+                ""));
 
         List<String> desc = new ArrayList<>();
         try {
