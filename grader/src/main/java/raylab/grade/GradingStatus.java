@@ -53,9 +53,9 @@ public enum GradingStatus {
     }
 
     /**
-     * The key of a Gradescope results.json's {@code extra_data} (stored by Gradescope, shown to no
-     * one) that lists the numbers of the tests whose grading failed; {@code raylab grade} writes
-     * it only when there is one.
+     * The key of a Gradescope results.json's {@code extra_data} ("Optional extra data to be
+     * stored", Gradescope's autograder specification) that lists the numbers of the tests whose
+     * grading failed; {@code raylab grade} writes it only when there is one.
      */
     public static final String FAILED_TESTS = "grading_failed_tests";
 
