@@ -107,6 +107,8 @@ class TestLauncherTest {
         for (TestResult r : trusted.results()) {
             assertTrue(r.gradingFailed(), "the grading's failure: " + r);
             assertTrue(r.message().contains("(exit status 1) before it started a test"), r.message());
+            assertTrue(r.message().contains("(it said: Unrecognized VM option 'RaylabNoSuchOption')"),
+                    "the JVM's own words, for the course staff: " + r.message());
         }
         TestLauncher.Run student = TestLauncher.run(classPath(classes), classes, List.of(), List.of(),
                 TestLauncher.Limits.DEFAULT, dir, expected, List.of(), badOption);
@@ -147,6 +149,37 @@ class TestLauncherTest {
         private static final long serialVersionUID = 1L;
     }
 
+    /**
+     * Text on the test JVM's standard output without a newline at its end (what a student's
+     * {@code System.out.print("t = ")} was, when the student process's output reached the channel
+     * before the capture was in place) does not run into the next frame: that frame, and every
+     * frame after it, still counts.
+     */
+    @Test
+    void textWithoutANewlineBeforeAFrameLeavesTheFrameWhole() throws Exception {
+        byte[] key = new byte[32];
+        new java.util.SplittableRandom(11).nextBytes(key);
+        java.io.ByteArrayOutputStream bytes = new java.io.ByteArrayOutputStream();
+        java.io.PrintStream out = new java.io.PrintStream(bytes, true, "UTF-8");
+        TestMain.Channel ch = new TestMain.Channel(out, key);
+        ch.send("START a");
+        out.print("t = ");
+        ch.send("RESULT {\"id\":\"a\"}");
+        out.print("(output cut at 64 KiB)");
+        ch.send("END");
+        javax.crypto.Mac mac = javax.crypto.Mac.getInstance("HmacSHA256");
+        mac.init(new javax.crypto.spec.SecretKeySpec(key, "HmacSHA256"));
+        long[] seq = {0};
+        List<String> reports = new java.util.ArrayList<>();
+        for (String line : bytes.toString("UTF-8").split("\n")) {
+            String r = TestLauncher.verify(mac, line, seq);
+            if (r != null) {
+                reports.add(r);
+            }
+        }
+        assertEquals(List.of("START a", "RESULT {\"id\":\"a\"}", "END"), reports, bytes.toString("UTF-8"));
+    }
+
     /** The report channel: only lines with the key's MAC and the next sequence number count. */
     @Test
     void reportLinesNeedTheKeyAndTheNextSequenceNumber() throws Exception {
@@ -157,7 +190,8 @@ class TestLauncherTest {
         ch.send("START a");
         ch.send("RESULT {\"id\":\"a\"}");
         ch.send("END");
-        String[] lines = bytes.toString("UTF-8").split("\n");
+        // Each frame is a line of its own, between newlines; the empty lines between them are skipped.
+        String[] lines = bytes.toString("UTF-8").strip().split("\n+");
         javax.crypto.Mac mac = javax.crypto.Mac.getInstance("HmacSHA256");
         mac.init(new javax.crypto.spec.SecretKeySpec(key, "HmacSHA256"));
         long[] seq = {0};

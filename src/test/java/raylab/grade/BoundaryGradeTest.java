@@ -61,6 +61,26 @@ class BoundaryGradeTest {
         assertEquals(20.0, max, 1e-9, "the sphere milestone's points");
     }
 
+    /**
+     * What the student's code prints never reaches the test JVM's signed channel to the grader:
+     * the reference with a debugging print that ends in no newline ({@code System.out.print("t? ")}
+     * at every call) scores every point. Before, the student process of a milestone's first
+     * tests wrote its output to the channel itself, the text ran into the next report line, and
+     * every report after it was lost: the grading failed (or, before that, scored 0).
+     */
+    @Test
+    void aPrintWithoutANewlineCostsNothing() throws IOException {
+        Path sub = GraderTest.submission(dir, "reference");
+        Path sphere = sub.resolve("Sphere.java");
+        String text = Files.readString(sphere);
+        String signature = "public boolean intersect(IntersectionRecord outRecord, Ray ray) {";
+        assertTrue(text.contains(signature), text);
+        Files.writeString(sphere, text.replace(signature, signature + " System.out.print(\"t? \");"));
+        JsonNode r = grade(sub);
+        assertFalse(r.has("extra_data"), "no part failed: " + r.get("extra_data"));
+        assertEquals(20.0, r.get("score").asDouble(), 1e-9, () -> "every point: " + r.get("tests"));
+    }
+
     @Test
     void theStudentProcessReachesNoSecret() throws IOException {
         JsonNode r = grade(GraderTest.submission(dir, "boundary-probe"));

@@ -106,6 +106,57 @@ class FailedGradingTest {
         assertTrue(Reports.summary(r).contains(CAUSE), "the console summary has the cause");
     }
 
+    /**
+     * A part that failed on the grader's side (here a hidden test whose trusted JVM ran out of its
+     * own memory) leaves no grade: a total that counts it as 0 is not the student's. Every
+     * platform says the grading failed, as when the grading could not run; the instructors'
+     * report names the part and its cause, and the other parts as graded.
+     */
+    @Test
+    void aPartThatFailedOnTheGradersSideDecidesNoGrade() throws IOException {
+        String cause = "the grader's test JVM ended early (exit status 3) during this test";
+        List<GradeReport.Test> tests = List.of(
+                new GradeReport.Test("sphere", "a ray that misses", Kind.VISIBLE, 1, 1, true, "", "", "visible", 3,
+                        "SphereTest.java", null),
+                new GradeReport.Test("sphere", "SphereHiddenTest: grazing rays", Kind.HIDDEN, 2, 0, false,
+                        GradingStatus.message(cause), "", "after_due_date", 3, "SphereHiddenTest.java", null, "",
+                        GradingStatus.GRADING_FAILED),
+                new GradeReport.Test("sphere", "scenes/sphere.json", Kind.SCENE, 1, 1, true, "", "", "visible", 3,
+                        "scenes/sphere.json", null));
+        GradeReport r = new GradeReport(List.of(new GradeReport.Milestone("sphere", "Ray-sphere intersection",
+                List.of(), tests)), List.of(), List.of(), List.of(), 2.0);
+        assertTrue(r.failed(), "no grade was decided");
+        assertEquals("sphere: the grading of SphereHiddenTest: grazing rays failed on the grader's side: " + cause,
+                r.failure());
+
+        JsonNode gs = JSON.readTree(Reports.gradescope(r));
+        assertFalse(gs.has("score"), "Gradescope: no score, not 2 of 4: " + gs);
+        assertEquals(0, gs.get("tests").size(), "Gradescope: no score table: " + gs);
+        assertEquals(GradeReport.FAILED_FOR_STUDENTS, gs.get("output").asText());
+        assertTrue(gs.path("extra_data").path("grading_failed").asBoolean(), gs.toString());
+        assertEquals("[\"1.2\"]", gs.path("extra_data").path(GradingStatus.FAILED_TESTS).toString(),
+                "the failed part, as a value: " + gs);
+        assertEquals(GradingStatus.GRADING_FAILED, GradingStatus.ofGradescope(gs));
+        assertNoSecret(gradescopeShown(gs), "Gradescope");
+
+        for (boolean after : new boolean[] {false, true}) {
+            JsonNode pl = JSON.readTree(PrairieLearn.results(r, after));
+            assertFalse(pl.get("gradable").asBoolean(), "PrairieLearn: not gradable, no attempt charged: " + pl);
+            assertEquals(GradeReport.FAILED_FOR_STUDENTS, pl.get("message").asText());
+            assertNoSecret(prairieLearnShown(pl), "PrairieLearn");
+        }
+
+        String students = HtmlReport.forStudents(r);
+        assertTrue(students.contains("The autograder failed"), students);
+        assertNoSecret(students, "the students' page");
+        String instructors = Reports.html(r);
+        assertTrue(instructors.contains(HtmlReport.esc(cause)), "the instructors' report has the cause: " + instructors);
+        assertTrue(instructors.contains("1 of 2 tests and data cases passed") && instructors.contains("scenes/sphere.json"),
+                "and the parts that were graded: " + instructors);
+        assertTrue(Reports.summary(r).startsWith("Grading failed, no points decided: sphere: the grading of"),
+                Reports.summary(r));
+    }
+
     /** A report with every instructor note the grader writes, and a student's own note. */
     static GradeReport withStaffNotes() {
         List<GradeReport.Test> tests = List.of(

@@ -234,6 +234,7 @@ public final class TestLauncher {
         Path skipFile = null;
         int runs = 0;
         List<String> stuckIds = new ArrayList<>();
+        FirstLine errLine = null;
         while (true) {
             // A test stuck in student code ended its JVM after its report ("STUCK", TestMain):
             // the tests not reported yet run in a new JVM, for as long as the run's wall clock lasts.
@@ -245,14 +246,21 @@ public final class TestLauncher {
             byte[] key = new byte[32];
             new SecureRandom().nextBytes(key);
 
+            // A trusted JVM's standard error is the JVM's and the grader's own (the student's code
+            // runs in its student process): its first line names why it did not start.
+            boolean keepErr = wallIsGuard && System.getenv("RAYLAB_DEBUG_CHILD") == null;
             ProcessBuilder pb = new ProcessBuilder(command).directory(workDir.toFile())
-                    .redirectError(System.getenv("RAYLAB_DEBUG_CHILD") == null ? ProcessBuilder.Redirect.DISCARD
+                    .redirectError(keepErr ? ProcessBuilder.Redirect.PIPE
+                            : System.getenv("RAYLAB_DEBUG_CHILD") == null ? ProcessBuilder.Redirect.DISCARD
                             : ProcessBuilder.Redirect.appendTo(new File(System.getenv("RAYLAB_DEBUG_CHILD"))));
             pb.environment().keySet().removeIf(k -> k.startsWith("JAVA_TOOL") || k.startsWith("_JAVA_OPTIONS")
                     || k.equals("JDK_JAVA_OPTIONS"));
             Process child = pb.start();
             p = child;
             runs++;
+            if (keepErr) {
+                errLine = new FirstLine(child.getErrorStream());
+            }
             try (OutputStream stdin = child.getOutputStream()) {
                 stdin.write((HexFormat.of().formatHex(key) + "\n").getBytes(StandardCharsets.UTF_8));
             } catch (IOException ignored) {
@@ -316,6 +324,7 @@ public final class TestLauncher {
             boolean crashed = exited && !ended[0] && stuck[0] == null;
             boolean silent = crashed && results.isEmpty() && current[0] == null && stuckIds.isEmpty()
                     && containerFailures.isEmpty();
+            String said = silent && errLine != null ? errLine.get() : "";
             List<TestResult> out = new ArrayList<>();
             String cutOff = null;
             for (TestResult e : expected) {
@@ -325,7 +334,8 @@ public final class TestLauncher {
                             + " of the student's code is in its own time: the machine or the grader was too slow");
                 } else if (r == null && wallIsGuard && silent) {
                     r = e.gradingFailure("the grader's test JVM ended (exit status " + p.exitValue() + ") before it"
-                            + " started a test: it did not start, or the course's tests could not be discovered");
+                            + " started a test: it did not start, or the course's tests could not be discovered"
+                            + (said.isEmpty() ? "" : " (it said: " + said + ")"));
                 } else if (r == null && wallIsGuard && crashed && stuckCase(stuckIds, e.id()) == null
                         && stuckIds.stream().noneMatch(st -> e.id().startsWith(classOf(st) + "/"))) {
                     r = e.gradingFailure("the grader's test JVM ended early (exit status " + p.exitValue() + ")"

@@ -110,6 +110,12 @@ public final class TestMain {
                 default -> throw new IllegalArgumentException("unknown argument " + args[i]);
             }
         }
+        // Whatever runs here prints into the capture, never onto the channel (standard output):
+        // from now on, before the student process starts.
+        CappedBuffer captured = new CappedBuffer(cap);
+        PrintStream capture = new PrintStream(captured, true, StandardCharsets.UTF_8);
+        System.setOut(capture);
+        System.setErr(capture);
         // In the grader's process: start the student process before the first test's clock runs.
         java.util.Optional<BoundaryHooks> boundary = BoundaryHooks.find();
         if (System.getProperty("raylab.boundary") != null && !list) {
@@ -119,11 +125,6 @@ public final class TestMain {
                 // the first call starts it, or reports why it cannot
             }
         }
-        CappedBuffer captured = new CappedBuffer(cap);
-        PrintStream capture = new PrintStream(captured, true, StandardCharsets.UTF_8);
-        System.setOut(capture);
-        System.setErr(capture);
-
         Launcher launcher = LauncherFactory.create();
         ObjectMapper json = new ObjectMapper();
         if (list) {
@@ -365,10 +366,15 @@ public final class TestMain {
             this.mac.init(new SecretKeySpec(key, "HmacSHA256"));
         }
 
+        /**
+         * One signed line, on a line of its own: it starts with a newline too, so that text some
+         * code wrote to this JVM's standard output without one (a library, the JVM itself) never
+         * runs into it; the reader skips the empty lines.
+         */
         synchronized void send(String payload) {
             String body = (++seq) + " " + payload.replace('\n', ' ').replace('\r', ' ');
             String tag = HexFormat.of().formatHex(mac.doFinal(body.getBytes(StandardCharsets.UTF_8)));
-            out.println("R2 " + tag + " " + body);
+            out.print("\nR2 " + tag + " " + body + "\n");
             out.flush();
         }
     }

@@ -58,8 +58,13 @@ public final class StudentProcess implements AutoCloseable {
     private final StudentJvm jvm;
     /** The calls in MULTI frames, and their counts. */
     private final Batches batches;
-    /** Where the student's captured output goes. */
-    private Consumer<String> output = System.out::print;
+    /**
+     * Where the student's captured output goes: {@code System.out} as it is when the output comes,
+     * not when this process was made. A test JVM starts its student process before it puts its
+     * capture in place ({@code TestMain}), and its standard output before that is the signed
+     * channel to the grader, which a student's text must never reach.
+     */
+    private Consumer<String> output = s -> System.out.print(s);
     /** Run before each frame of an outermost call (a render's deadline), or null. */
     private Runnable beforeFrame;
     /** How many calls were made (batched calls counted one by one). */
@@ -93,7 +98,7 @@ public final class StudentProcess implements AutoCloseable {
         this.batches = new Batches(new BatchLink());
     }
 
-    /** Where the student's captured output goes (default: this JVM's standard output). */
+    /** Where the student's captured output goes (default: this JVM's {@code System.out} of the moment). */
     public void output(Consumer<String> sink) {
         this.output = sink;
     }

@@ -27,7 +27,8 @@ import raylab.course.TestLauncher;
             "junit.xml and report.html into --out (and PrairieLearn's results.json with --prairielearn), and prints a table.",
             "Details: grader/README.md."},
         exitCodeListHeading = "%nExit status:%n",
-        exitCodeList = {"0:graded (whatever the score)", "1:the grader could not grade (results.json still written)",
+        exitCodeList = {"0:graded (whatever the score)", "1:the grading failed, no points decided: the grader could not grade, or a part of it failed on the"
+                + " grader's side (results.json still written, without a score)",
             "2:bad option, or no such submission (results.json still written)"})
 public final class GradeCommand implements Callable<Integer>, OptionalCommand {
     @Parameters(index = "0", paramLabel = "SUBMISSION", description = "Directory or zip of the student's files.")
@@ -184,7 +185,8 @@ public final class GradeCommand implements Callable<Integer>, OptionalCommand {
             } else {
                 report = new Grader(o, log).seed(seed).grade(submission);
                 if (report.failed()) {
-                    // A milestone the course's setup cannot grade: no grade was decided.
+                    // A milestone the course's setup cannot grade, or a part that failed on the
+                    // grader's side: no grade was decided.
                     System.err.println("raylab: grading failed: " + oneLine(report.failure()));
                     status = 1;
                 }

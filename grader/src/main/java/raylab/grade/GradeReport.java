@@ -1,6 +1,9 @@
 package raylab.grade;
 
+import java.util.ArrayList;
+import java.util.LinkedHashMap;
 import java.util.List;
+import java.util.Map;
 
 import raylab.scene.Display;
 
@@ -50,7 +53,7 @@ public record GradeReport(List<Milestone> milestones, List<String> accepted, Lis
      * What a student reads, on every platform, when the grading failed: no cause (it may name the
      * instructor's paths or hidden tests), no score.
      */
-    public static final String FAILED_FOR_STUDENTS = "The autograder failed before it could grade this submission,"
+    public static final String FAILED_FOR_STUDENTS = "The autograder failed while grading this submission,"
             + " so no points were decided. This is a problem of the course's autograder, not of your code: please"
             + " tell the course staff, who have the cause in their report and must fix the autograder.";
 
@@ -58,18 +61,23 @@ public record GradeReport(List<Milestone> milestones, List<String> accepted, Lis
         return round(milestones.stream().mapToDouble(Milestone::score).sum());
     }
 
-    /** Whether the grading could not run at all: no points were decided (not a score of 0). */
+    /**
+     * Whether the grading decided no grade (not a score of 0): it could not run, a milestone's
+     * setup could not grade it, or a part of it failed on the grader's side.
+     */
     public boolean failed() {
         return failure() != null;
     }
 
     /**
      * Why the grading failed, for the course staff (null when it did not fail): the grading
-     * could not run, or a milestone's setup could not grade it (the other milestones are
-     * graded, in the instructors' report, but no grade was decided).
+     * could not run, a milestone's setup could not grade it, or a test or scene failed on the
+     * grader's side ({@link GradingStatus#GRADING_FAILED}: the machine's load, the trusted side).
+     * The other parts are graded, in the instructors' report, but a total with a part that
+     * decided nothing is not the student's grade, so no grade was decided.
      */
     public String failure() {
-        List<String> causes = new java.util.ArrayList<>();
+        List<String> causes = new ArrayList<>();
         if (cause != null) {
             causes.add(cause);
         }
@@ -77,6 +85,15 @@ public record GradeReport(List<Milestone> milestones, List<String> accepted, Lis
             if (m.cause() != null) {
                 causes.add(m.id() + ": " + m.cause());
             }
+            // One line per cause: the parts it took down, counted, the first one named.
+            Map<String, List<String>> parts = new LinkedHashMap<>();
+            for (Test t : m.tests()) {
+                if (t.status() == GradingStatus.GRADING_FAILED) {
+                    parts.computeIfAbsent(GradingStatus.cause(t.message()), k -> new ArrayList<>()).add(t.name());
+                }
+            }
+            parts.forEach((why, names) -> causes.add(m.id() + ": the grading of " + (names.size() == 1 ? names.get(0)
+                    : names.size() + " parts (" + names.get(0) + ", ...)") + " failed on the grader's side: " + why));
         }
         return causes.isEmpty() ? null : String.join("; ", causes);
     }

@@ -10,7 +10,9 @@ import com.fasterxml.jackson.databind.JsonNode;
  * memory (a student process killed from outside twice, a test's wall-clock guard fired while the
  * student's code had used less than its time), or the trusted side. Such a test or scene scores
  * 0 in the arithmetic, but no points were decided: the status says so, and the message is
- * {@link #STUDENT_MESSAGE} followed by the cause.
+ * {@link #STUDENT_MESSAGE} followed by the cause. A grading with one such part decided no grade
+ * at all ({@link GradeReport#failed()}): a total that counts an undecided part as 0 is not the
+ * student's grade, so every platform says the grading failed, and it is graded again.
  */
 public enum GradingStatus {
     /** Every part ran to a verdict on the student's code. */
@@ -36,6 +38,13 @@ public enum GradingStatus {
     /** The message of a part whose grading failed, for {@code cause} (the trusted side's words, no student text). */
     static String message(String cause) {
         return STUDENT_MESSAGE + " (" + cause + ")";
+    }
+
+    /** The cause in a message made by {@link #message}; the message itself if it is not one. */
+    static String cause(String message) {
+        String prefix = STUDENT_MESSAGE + " (";
+        return message.startsWith(prefix) && message.endsWith(")")
+                ? message.substring(prefix.length(), message.length() - 1) : message;
     }
 
     /** The status of a report: failed if the grader marked any test or scene as failed on its side. */

@@ -112,7 +112,8 @@ final class HtmlReport {
                 b.append("<p>").append(esc(GradeReport.FAILED_FOR_STUDENTS)).append("</p>\n");
                 return b.append("</div>\n").toString();
             }
-            b.append("<p>Fix the course's setup and grade this submission again. Cause:</p>\n<pre style=\"")
+            b.append("<p>Fix the cause (the course's setup, or the grading machine's load or memory) and grade this"
+                    + " submission again. Cause:</p>\n<pre style=\"")
                     .append(PRE).append("\">").append(esc(r.failure())).append("</pre>\n");
             if (r.milestones().isEmpty()) {
                 for (String n : r.notes()) {

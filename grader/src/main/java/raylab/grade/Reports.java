@@ -110,12 +110,19 @@ public final class Reports {
     public static String gradescope(GradeReport r) throws IOException {
         Map<String, Object> root = new LinkedHashMap<>();
         if (r.failed()) {
-            // No score: none was decided. Gradescope's own run_autograder (bundle gradescope) does
-            // not upload this file at all, so that Gradescope says "The autograder failed to
-            // execute correctly"; grade-all's status column says "failed".
+            // No score and no tests: none was decided, and a part's 0 is not the student's.
+            // Gradescope's own run_autograder (bundle gradescope) does not upload this file at all,
+            // so that Gradescope says "The autograder failed to execute correctly"; grade-all's
+            // status column says "grading failed" and its next run grades the student again.
             root.put("execution_time", Math.round(r.seconds()));
             root.put("output", GradeReport.FAILED_FOR_STUDENTS);
-            root.put("extra_data", Map.of("grading_failed", true));
+            Map<String, Object> extra = new LinkedHashMap<>();
+            extra.put("grading_failed", true);
+            List<String> parts = failedParts(r);
+            if (!parts.isEmpty()) {
+                extra.put(GradingStatus.FAILED_TESTS, parts);
+            }
+            root.put("extra_data", extra);
             root.put("visibility", "visible");
             root.put("stdout_visibility", "hidden");
             root.put("tests", List.of());
@@ -129,46 +136,57 @@ public final class Reports {
         root.put("visibility", "visible");
         root.put("stdout_visibility", "hidden");
         List<Map<String, Object>> tests = new ArrayList<>();
-        List<String> gradingFailed = new ArrayList<>();
-        int mi = 0;
-        for (GradeReport.Milestone m : r.milestones()) {
-            mi++;
-            int ti = 0;
-            for (GradeReport.Test t : m.tests()) {
-                ti++;
-                Map<String, Object> j = new LinkedHashMap<>();
-                j.put("name", m.id() + ": " + t.name() + (t.kind() == Kind.HIDDEN ? " (hidden test)" : ""));
-                j.put("number", mi + "." + ti);
-                j.put("score", GradeReport.round(t.score()));
-                j.put("max_score", GradeReport.round(t.maxScore()));
-                j.put("status", t.passed() ? "passed" : "failed");
-                String out = t.passed() ? "" : t.message();
-                if (t.images() != null && !t.images().metric().isEmpty() && t.passed()) {
-                    out = t.images().metric();
-                }
-                if (!t.note().isEmpty()) {
-                    out += (out.isEmpty() ? "" : "\n\n") + "Note (no points taken): " + t.note();
-                }
-                if (!t.output().isBlank()) {
-                    out += (out.isEmpty() ? "" : "\n\n") + (t.output().contains("more bytes of output dropped")
-                            ? "Output (the output past the cap was dropped):\n" : "Output:\n") + t.output();
-                }
-                j.put("output", out);
-                j.put("tags", List.of(m.id(), t.kind().label()));
-                j.put("visibility", t.visibility());
-                tests.add(j);
-                if (t.status() == GradingStatus.GRADING_FAILED) {
-                    gradingFailed.add((String) j.get("number"));
-                }
+        for (Numbered n : numbered(r)) {
+            GradeReport.Test t = n.test();
+            Map<String, Object> j = new LinkedHashMap<>();
+            j.put("name", n.milestone() + ": " + t.name() + (t.kind() == Kind.HIDDEN ? " (hidden test)" : ""));
+            j.put("number", n.number());
+            j.put("score", GradeReport.round(t.score()));
+            j.put("max_score", GradeReport.round(t.maxScore()));
+            j.put("status", t.passed() ? "passed" : "failed");
+            String out = t.passed() ? "" : t.message();
+            if (t.images() != null && !t.images().metric().isEmpty() && t.passed()) {
+                out = t.images().metric();
             }
+            if (!t.note().isEmpty()) {
+                out += (out.isEmpty() ? "" : "\n\n") + "Note (no points taken): " + t.note();
+            }
+            if (!t.output().isBlank()) {
+                out += (out.isEmpty() ? "" : "\n\n") + (t.output().contains("more bytes of output dropped")
+                        ? "Output (the output past the cap was dropped):\n" : "Output:\n") + t.output();
+            }
+            j.put("output", out);
+            j.put("tags", List.of(n.milestone(), t.kind().label()));
+            j.put("visibility", t.visibility());
+            tests.add(j);
         }
         root.put("tests", tests);
-        if (!gradingFailed.isEmpty()) {
-            // The parts whose grading failed, as a value (grade-all's status column): their
-            // messages hold the student's output too, so their text decides nothing.
-            root.put("extra_data", Map.of(GradingStatus.FAILED_TESTS, gradingFailed));
-        }
         return JSON.writeValueAsString(root);
+    }
+
+    /**
+     * The numbers ("milestone.test", as in a graded results.json) of the parts whose grading
+     * failed on the grader's side, as a value for grade-all's status column: their messages hold
+     * the student's output too, so their text decides nothing.
+     */
+    private static List<String> failedParts(GradeReport r) {
+        return numbered(r).stream().filter(n -> n.test().status() == GradingStatus.GRADING_FAILED)
+                .map(Numbered::number).toList();
+    }
+
+    /** A graded item and its number in Gradescope's results.json: "2.5", the fifth of the second milestone. */
+    private record Numbered(String number, String milestone, GradeReport.Test test) {
+    }
+
+    private static List<Numbered> numbered(GradeReport r) {
+        List<Numbered> all = new ArrayList<>();
+        for (int mi = 0; mi < r.milestones().size(); mi++) {
+            GradeReport.Milestone m = r.milestones().get(mi);
+            for (int ti = 0; ti < m.tests().size(); ti++) {
+                all.add(new Numbered((mi + 1) + "." + (ti + 1), m.id(), m.tests().get(ti)));
+            }
+        }
+        return all;
     }
 
     static String xml(String s) {

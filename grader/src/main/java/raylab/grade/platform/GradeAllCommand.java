@@ -40,6 +40,7 @@ import raylab.cli.UserError;
 import raylab.course.Assignment;
 import raylab.course.Assignments;
 import raylab.course.JavaBuild;
+import raylab.grade.GradingStatus;
 
 /**
  * {@code raylab grade-all SUBMISSIONS_DIR --out DIR}: grades every submission of a class. Each
@@ -202,7 +203,8 @@ public final class GradeAllCommand implements Callable<Integer>, OptionalCommand
         writeAtomically(csv, csv(rows, ids));
         long bad = rows.stream().filter(x -> !x.status().equals("graded")).count();
         spec.commandLine().getOut().println("wrote " + csv + ": " + rows.size() + " student(s)"
-                + (bad > 0 ? ", " + bad + " not graded (see the status column and DIR/STUDENT/grade.log)" : ""));
+                + (bad > 0 ? ", " + bad + " not graded (see the status column and DIR/STUDENT/grade.log; run the same"
+                        + " command again to grade them again)" : ""));
         return bad > 0 || failures.get() > 0 ? 1 : 0;
     }
 
@@ -363,7 +365,10 @@ public final class GradeAllCommand implements Callable<Integer>, OptionalCommand
             } else {
                 Files.writeString(dir.resolve("error.txt"), "raylab grade ended with status " + status + "; see grade.log\n");
                 failures.incrementAndGet();
-                report(log, progress, student, "NOT GRADED: the grader failed (status " + status + "), see " + logFile);
+                report(log, progress, student, gradingFailed(dir.resolve("results.json"))
+                        ? "NOT GRADED: the grading failed on the grader's side, no points decided (status " + status
+                                + "), see " + logFile
+                        : "NOT GRADED: the grader failed (status " + status + "), see " + logFile);
             }
         } catch (Exception | Error e) {
             failures.incrementAndGet();
@@ -397,7 +402,11 @@ public final class GradeAllCommand implements Callable<Integer>, OptionalCommand
     static Row row(String student, Path dir, List<String> ids) {
         Map<String, Double> per = new LinkedHashMap<>();
         if (!Files.isRegularFile(dir.resolve(DONE)) || !Files.isRegularFile(dir.resolve("results.json"))) {
-            return new Row(student, per, 0, Files.isRegularFile(dir.resolve("error.txt")) ? "failed" : "not graded");
+            // Not finished (the next run grades the student again): a grading that failed on the
+            // grader's side wrote results.json to say so, with no score; anything else is "failed".
+            String status = !Files.isRegularFile(dir.resolve("error.txt")) ? "not graded"
+                    : gradingFailed(dir.resolve("results.json")) ? GradingStatus.GRADING_FAILED.label() : "failed";
+            return new Row(student, per, 0, status);
         }
         try {
             JsonNode n = new ObjectMapper().readTree(dir.resolve("results.json").toFile());
@@ -416,9 +425,19 @@ public final class GradeAllCommand implements Callable<Integer>, OptionalCommand
                 total += e.getValue();
             }
             // A grading that failed on the grader's side decided nothing: its row says so.
-            return new Row(student, per, Math.round(total * 100) / 100.0, raylab.grade.GradingStatus.ofGradescope(n).label());
+            return new Row(student, per, Math.round(total * 100) / 100.0, GradingStatus.ofGradescope(n).label());
         } catch (IOException | RuntimeException e) {
             return new Row(student, Map.of(), 0, "failed");
+        }
+    }
+
+    /** Whether this results.json says that its grading failed on the grader's side ({@link GradingStatus#ofGradescope}). */
+    private static boolean gradingFailed(Path results) {
+        try {
+            return Files.isRegularFile(results)
+                    && GradingStatus.ofGradescope(new ObjectMapper().readTree(results.toFile())) == GradingStatus.GRADING_FAILED;
+        } catch (IOException | RuntimeException e) {
+            return false;
         }
     }
 

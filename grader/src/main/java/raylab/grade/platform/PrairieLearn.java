@@ -23,7 +23,8 @@ import raylab.grade.GradeReport;
 /**
  * PrairieLearn's external-grading {@code results.json}, written from a {@link GradeReport}: the
  * score as a fraction in [0, 1], {@code gradable: false} when a graded milestone does not compile
- * (PrairieLearn then does not charge the student an attempt), one entry of {@code tests[]} per
+ * or the grading failed, a part of it included ({@link GradeReport#failed()}: PrairieLearn then
+ * records no score and does not charge the student an attempt), one entry of {@code tests[]} per
  * graded item with {@code points}, {@code max_points} and the message in the student's terms, and
  * each scene's render, reference and difference as {@code images} (PNG data URIs). The file stays
  * under PrairieLearn's limit of 1 MB: images are halved in size until it fits, then dropped.
