@@ -104,6 +104,23 @@ class IncrementalTest {
                 "no class file from a failed compile");
     }
 
+    /**
+     * A byte order mark at the file's start (some Windows editors write one) fails javac with
+     * "illegal character: '\\ufeff'": the message says what that is and what to do, here as in
+     * the grader's report, which read the same {@link JavaBuild.Problem}.
+     */
+    @Test
+    void aByteOrderMarkIsNamed(@TempDir Path dir) throws IOException {
+        Path root = project(dir);
+        Path sphere = root.resolve(SPHERE);
+        Files.writeString(sphere, "\ufeff" + Files.readString(sphere, StandardCharsets.UTF_8), StandardCharsets.UTF_8);
+        Files.setLastModifiedTime(sphere, FileTime.fromMillis(2_000_000));
+        JavaBuild.Result r = Incremental.of(root).update(JavaBuild.ownClassPath());
+        assertFalse(r.success(), "javac does not accept a byte order mark");
+        assertEquals("illegal character: '\\ufeff' (the file starts with a byte order mark, which javac does not accept:"
+                + " save it as UTF-8 without BOM)", r.errors().get(0).message(), r.errors().toString());
+    }
+
     @Test
     void moreErrorsThanShownAreCounted() {
         List<JavaBuild.Problem> errors = List.of(new JavaBuild.Problem(null, 1, 1, "a"),

@@ -44,10 +44,19 @@ public final class JavaBuild {
             for (Diagnostic<? extends JavaFileObject> d : diagnostics) {
                 if (d.getKind() == Diagnostic.Kind.ERROR) {
                     Path file = d.getSource() == null ? null : Path.of(d.getSource().toUri());
-                    out.add(new Problem(file, d.getLineNumber(), d.getColumnNumber(), d.getMessage(Locale.ROOT)));
+                    out.add(new Problem(file, d.getLineNumber(), d.getColumnNumber(), hint(d.getMessage(Locale.ROOT))));
                 }
             }
             return out;
+        }
+
+        /** What javac says of a byte order mark, which some Windows editors put at a file's start. */
+        static final String BOM = "illegal character: '\\ufeff'";
+
+        /** javac's message, with what to do about it where javac's words do not say. */
+        static String hint(String message) {
+            return message.startsWith(BOM) ? BOM + " (the file starts with a byte order mark, which javac does not"
+                    + " accept: save it as UTF-8 without BOM)" + message.substring(BOM.length()) : message;
         }
 
         @Override
