@@ -55,17 +55,7 @@ class GradedBuildTest {
     /** A copy of the project with the release's manifest, then Vec3 given lengthCubed and Sphere using it. */
     @BeforeAll
     static void project() throws IOException {
-        copy = CheckFeedbackTest.copyLayout(root, dir.resolve("project"));
-        SortedMap<String, byte[]> released = new TreeMap<>();
-        FileTrees.copy(root.resolve("src/main/java"), copy.resolve("src/main/java"));
-        try (Stream<Path> s = Files.walk(root.resolve("src/main/java"))) {
-            for (Path p : s.filter(Files::isRegularFile).toList()) {
-                released.put(root.relativize(p).toString().replace('\\', '/'), Files.readAllBytes(p));
-            }
-        }
-        Set<String> students = SubmitCheckCommand.studentFiles(Assignments.load(root).all());
-        Files.writeString(copy.resolve(GradedBuild.MANIFEST), GradedBuild.manifestText(released, students,
-                JavaBuild.ownClassPath()));
+        copy = released(root, dir.resolve("project"));
         String v = Files.readString(copy.resolve(VEC3));
         String length = "    public double length() {";
         assertTrue(v.contains(length), "Vec3.length");
@@ -77,6 +67,22 @@ class GradedBuildTest {
         assertTrue(s.contains(disc), "Sphere's discriminant");
         sphere = s.replace(disc, "double disc = radius * radius - perp.lengthCubed() / perp.length();");
         Files.writeString(copy.resolve(SPHERE), sphere);
+    }
+
+    /** A copy of the project at {@code root} in {@code to}, as a starter is: with the release's manifest. */
+    static Path released(Path root, Path to) throws IOException {
+        Path copy = CheckFeedbackTest.copyLayout(root, to);
+        SortedMap<String, byte[]> released = new TreeMap<>();
+        FileTrees.copy(root.resolve("src/main/java"), copy.resolve("src/main/java"));
+        try (Stream<Path> s = Files.walk(root.resolve("src/main/java"))) {
+            for (Path p : s.filter(Files::isRegularFile).toList()) {
+                released.put(root.relativize(p).toString().replace('\\', '/'), Files.readAllBytes(p));
+            }
+        }
+        Set<String> students = SubmitCheckCommand.studentFiles(Assignments.load(root).all());
+        Files.writeString(copy.resolve(GradedBuild.MANIFEST), GradedBuild.manifestText(released, students,
+                JavaBuild.ownClassPath()));
+        return copy;
     }
 
     static Path zip(String name) throws IOException {
@@ -92,13 +98,18 @@ class GradedBuildTest {
     }
 
     static String[] child(String... args) throws Exception {
-        Path out = Files.createTempFile(dir, "out", ".txt");
-        Path err = Files.createTempFile(dir, "err", ".txt");
+        return childIn(copy, args);
+    }
+
+    /** {@code raylab ARGS} in a JVM of its own, in {@code project}: exit status, standard output, standard error. */
+    static String[] childIn(Path project, String... args) throws Exception {
+        Path out = Files.createTempFile(project.getParent(), "out", ".txt");
+        Path err = Files.createTempFile(project.getParent(), "err", ".txt");
         List<String> cmd = new java.util.ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin", "java").toString()));
         cmd.addAll(JavaBuild.QUICK_JVM); // as the raylab launcher starts a command
         cmd.addAll(List.of("-cp", System.getProperty("java.class.path"), "raylab.cli.Main"));
         cmd.addAll(List.of(args));
-        Process p = new ProcessBuilder(cmd).directory(copy.toFile()).redirectOutput(out.toFile())
+        Process p = new ProcessBuilder(cmd).directory(project.toFile()).redirectOutput(out.toFile())
                 .redirectError(err.toFile()).start();
         assertTrue(p.waitFor(10, TimeUnit.MINUTES), "raylab " + String.join(" ", args) + " finished");
         return new String[] {Integer.toString(p.exitValue()), Files.readString(out), Files.readString(err)};

@@ -76,9 +76,9 @@ public final class CheckCommand implements Callable<Integer> {
         }
         printTable(out, outcomes);
         // What the grader builds differently: it never uses the student's copy of the framework.
-        boolean breaks = SubmitCheckCommand.printDrift(out, raylab.course.GradedBuild.check(root,
-                SubmitCheckCommand.projectFiles(root, selected), SubmitCheckCommand.studentFiles(all.all()),
-                raylab.course.JavaBuild.ownClassPath()));
+        boolean breaks = SubmitCheckCommand.printDrift(out, SubmitCheckCommand.drift(root,
+                SubmitCheckCommand.projectFiles(root, selected), SubmitCheckCommand.projectFiles(root, all.all()),
+                all.all(), raylab.course.JavaBuild.ownClassPath()));
         out.flush();
         if (classroom50 != null) {
             raylab.course.Classroom50Result.write(classroom50, outcomes, System.getenv(), root);

@@ -117,7 +117,7 @@ public final class SubmitCheckCommand implements Callable<Integer> {
             }
         }
         boolean breaks = !compiles(out, s.files(), studentFiles(assignments));
-        breaks |= printDrift(out, GradedBuild.check(root, s.files(), studentFiles(assignments), JavaBuild.ownClassPath()));
+        breaks |= printDrift(out, drift(root, s.files(), s.files(), assignments, JavaBuild.ownClassPath()));
         if (!s.duplicates().isEmpty()) {
             out.println();
             s.duplicates().forEach((target, paths) -> out.println("REFUSED: " + paths.size() + " copies of "
@@ -166,8 +166,8 @@ public final class SubmitCheckCommand implements Callable<Integer> {
         }
         details.stream().distinct().forEach(out::println);
         out.println("Nothing else is graded: the grader uses its own copy of every other file.");
-        boolean breaks = printDrift(out, GradedBuild.check(root, projectFiles(root, assignments), studentFiles(assignments),
-                withFirst(first)));
+        Map<String, String> graded = projectFiles(root, assignments);
+        boolean breaks = printDrift(out, drift(root, graded, graded, assignments, withFirst(first)));
         tagWarnings(root, assignments).forEach(out::println);
         out.println("To check a zip before uploading it: ./raylab submit-check FILE.zip");
         return present == 0 || breaks ? Main.FAILED : Main.OK;
@@ -308,6 +308,26 @@ public final class SubmitCheckCommand implements Callable<Integer> {
             out.println("NOTE: " + l + ".");
         }
         return !d.uses().isEmpty();
+    }
+
+    /**
+     * Everything the grader builds differently for {@code graded} (by path: the project's files or
+     * a submission's): the framework files changed or added and the uses of what only they have
+     * ({@link GradedBuild#check}), and the uses of what the student added to a graded file of another
+     * milestone, among {@code all} ({@link GradedBuild#acrossMilestones}). Null without a manifest.
+     */
+    static GradedBuild.Drift drift(Path root, Map<String, String> graded, Map<String, String> all,
+            List<Assignment> assignments, List<Path> classPath) throws IOException {
+        GradedBuild.Drift d = GradedBuild.check(root, graded, studentFiles(assignments), classPath);
+        return d == null ? null : d.with(GradedBuild.acrossMilestones(root, graded, all, milestoneOf(assignments),
+                classPath));
+    }
+
+    /** Each graded file's milestone, by path. */
+    static Map<String, String> milestoneOf(List<Assignment> assignments) {
+        Map<String, String> out = new LinkedHashMap<>();
+        assignments.forEach(a -> a.files().forEach(f -> out.put(f.path(), a.id())));
+        return out;
     }
 
     /** The graded files of the project at {@code root}, by path, as they are now. */

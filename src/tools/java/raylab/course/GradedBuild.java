@@ -78,6 +78,13 @@ public final class GradedBuild {
             return changedFiles.isEmpty() && addedFiles.isEmpty() && uses.isEmpty();
         }
 
+        /** The same with these uses too (the graded files' uses of what another graded file of the student's has). */
+        public Drift with(List<String> more) {
+            List<String> all = new ArrayList<>(uses);
+            more.stream().filter(u -> !all.contains(u)).forEach(all::add);
+            return new Drift(changedFiles, addedFiles, all);
+        }
+
         /** One line each: the uses first (they cost the milestone), then the files. */
         public List<String> lines() {
             List<String> out = new ArrayList<>(uses);
@@ -275,6 +282,17 @@ public final class GradedBuild {
      */
     public static List<String> uses(Map<String, String> graded, Map<String, String> own, List<Path> classPath,
             Set<String> original, List<String> addedFiles) throws IOException {
+        return usesIn(graded, own, classPath, original, (user, what, owner, file) -> sentence(user, what, owner, file,
+                addedFiles.contains(file)));
+    }
+
+    /** The sentence for {@code user} (Sphere) using {@code what} (Vec3.lengthCubed) of {@code owner} in the student's {@code file}. */
+    private interface Sentence {
+        String of(String user, String what, String owner, String file);
+    }
+
+    private static List<String> usesIn(Map<String, String> graded, Map<String, String> own, List<Path> classPath,
+            Set<String> original, Sentence sentence) throws IOException {
         Map<String, String> ownByClass = new LinkedHashMap<>();
         own.keySet().forEach(f -> ownByClass.put(classNameOf(f), f));
         JavaCompiler javac = JavaBuild.compiler();
@@ -319,7 +337,7 @@ public final class GradedBuild {
                         TypeElement top = topLevel(e);
                         String file = top == null ? null : ownByClass.get(top.getQualifiedName().toString());
                         if (file != null && !original.contains(signature(e, elements, types))) {
-                            out.add(sentence(user, e, top, file, addedFiles.contains(file)));
+                            out.add(sentence.of(user, what(e), top.getSimpleName().toString(), file));
                         }
                     }
                 }.scan(new TreePath(unit), null);
@@ -342,18 +360,82 @@ public final class GradedBuild {
                         + ": this will not compile there";
     }
 
-    private static String sentence(String user, Element e, TypeElement top, String file, boolean addedFile) {
-        String what;
+    /** What a use names: "Vec3.lengthCubed", "new Roots(double, double)", "Roots". */
+    private static String what(Element e) {
         if (e instanceof TypeElement te) {
-            what = te.getSimpleName().toString();
+            return te.getSimpleName().toString();
         } else if (e instanceof ExecutableElement x && e.getKind() == ElementKind.CONSTRUCTOR) {
-            what = "new " + e.getEnclosingElement().getSimpleName() + "(" + x.getParameters().stream()
+            return "new " + e.getEnclosingElement().getSimpleName() + "(" + x.getParameters().stream()
                     .map(p -> p.asType().toString().replaceAll("[a-z0-9_]+\\.", "")).collect(Collectors.joining(", "))
                     + ")";
-        } else {
-            what = e.getEnclosingElement().getSimpleName() + "." + e.getSimpleName();
         }
-        return sentence(user, what, top.getSimpleName().toString(), file, addedFile);
+        return e.getEnclosingElement().getSimpleName() + "." + e.getSimpleName();
+    }
+
+    // ---------------------------------------------------------------- the graded files of other milestones
+
+    /**
+     * The one sentence for a graded file ({@code user}, e.g. Box) using {@code what} (e.g.
+     * Sphere.later) that the student added to the graded file {@code file} of another milestone:
+     * the same in {@code check}, {@code submit-check} and the grader's report.
+     */
+    public static String acrossSentence(String user, String what, String owner, String file) {
+        String fileName = file.substring(file.lastIndexOf('/') + 1);
+        return user + " uses " + what + ", which you added to " + fileName + "; the grader compiles " + user
+                + ".java with its own " + owner + ", not yours (each milestone is graded on its own): this will not"
+                + " compile there; put what " + user + " needs in " + user + ".java";
+    }
+
+    /**
+     * Each milestone's graded files' uses of what the student added to a graded file of another
+     * milestone (a helper in Sphere.java that Box.java calls): the grader compiles a milestone's
+     * files with its own copies of the other milestones' classes, never the student's, so such a
+     * use compiles in the student's project and not at the grader. {@code graded}: the files to
+     * check, by path; {@code all}: every graded file of the project or the submission, by path;
+     * {@code milestoneOf}: each graded file's milestone. Only another file whose class a file names
+     * is compiled with it; none when they do not compile together (javac's errors say more then),
+     * or when the project has no manifest.
+     */
+    public static List<String> acrossMilestones(Path root, Map<String, String> graded, Map<String, String> all,
+            Map<String, String> milestoneOf, List<Path> classPath) throws IOException {
+        Manifest m = manifest(root);
+        return m == null ? List.of() : acrossMilestones(graded, all, milestoneOf, classPath, m.api());
+    }
+
+    /**
+     * The grader's side of {@link #acrossMilestones}, after milestone {@code milestone}'s files
+     * ({@code graded}) did not compile against {@code classPath}, which holds its own classes of
+     * the other milestones: the uses of what the submission's other graded files ({@code all})
+     * have and those classes have not.
+     */
+    public static List<String> acrossAtGrader(Map<String, String> graded, Map<String, String> all,
+            Map<String, String> milestoneOf, List<Path> classPath) throws IOException {
+        List<String> classes = all.keySet().stream().filter(f -> !graded.containsKey(f)).map(GradedBuild::classNameOf)
+                .toList();
+        return acrossMilestones(graded, all, milestoneOf, classPath, api(classes, classPath));
+    }
+
+    private static List<String> acrossMilestones(Map<String, String> graded, Map<String, String> all,
+            Map<String, String> milestoneOf, List<Path> classPath, Set<String> original) throws IOException {
+        Map<String, Map<String, String>> byMilestone = new LinkedHashMap<>();
+        graded.forEach((f, text) -> byMilestone.computeIfAbsent(milestoneOf.getOrDefault(f, f), k -> new LinkedHashMap<>())
+                .put(f, text));
+        List<String> out = new ArrayList<>();
+        for (var e : byMilestone.entrySet()) {
+            Map<String, String> named = new LinkedHashMap<>();
+            all.forEach((f, text) -> {
+                String simple = classNameOf(f).substring(classNameOf(f).lastIndexOf('.') + 1);
+                boolean other = !e.getKey().equals(milestoneOf.getOrDefault(f, f));
+                if (other && text != null && e.getValue().values().stream().anyMatch(t -> t != null
+                        && java.util.regex.Pattern.compile("\\b" + simple + "\\b").matcher(t).find())) {
+                    named.put(f, text);
+                }
+            });
+            if (!named.isEmpty()) {
+                out.addAll(usesIn(e.getValue(), named, classPath, original, GradedBuild::acrossSentence));
+            }
+        }
+        return out;
     }
 
     private static TypeElement topLevel(Element e) {

@@ -76,6 +76,13 @@ final class StudentCompile {
         for (String use : raylab.course.GradedBuild.atGrader(graded, sub.framework(), below)) {
             msg.append("\n  ").append(use);
         }
+        // A use of what the student added to a graded file of another milestone: compiled here with the
+        // course's own classes of that milestone.
+        Map<String, String> milestoneOf = new LinkedHashMap<>();
+        run.all().forEach(o -> o.files().forEach(f -> milestoneOf.put(f.path(), o.id())));
+        for (String use : raylab.course.GradedBuild.acrossAtGrader(graded, sub.files(), milestoneOf, below)) {
+            msg.append("\n  ").append(use);
+        }
         return new Compiled(overlay, below, msg.toString());
     }
 

@@ -1,0 +1,128 @@
+package raylab.cli;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import java.io.ByteArrayOutputStream;
+import java.io.IOException;
+import java.io.OutputStream;
+import java.io.PrintWriter;
+import java.io.StringWriter;
+import java.nio.charset.StandardCharsets;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.util.List;
+import java.util.Map;
+import java.util.zip.ZipEntry;
+import java.util.zip.ZipOutputStream;
+
+import org.junit.jupiter.api.BeforeAll;
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.io.TempDir;
+
+import com.fasterxml.jackson.databind.JsonNode;
+import com.fasterxml.jackson.databind.ObjectMapper;
+
+import raylab.course.Assignment;
+import raylab.course.Assignments;
+import raylab.course.GradedBuild;
+import raylab.course.JavaBuild;
+
+/**
+ * A helper a student adds to one graded file and uses in another milestone's (Box.java calling
+ * {@code Sphere.later}, which the student wrote in Sphere.java) compiles in the student's project
+ * and not at the grader, which compiles each milestone's files with its own classes of the other
+ * milestones. {@code check} and {@code submit-check} say so before submission, in the sentence the
+ * grader's report gives. Before, both said "finished" and the grader scored the box milestone 0
+ * ("your code does not compile").
+ */
+class AcrossMilestonesTest {
+    static final String SPHERE = "src/main/java/raylab/surface/Sphere.java";
+    static final String BOX = "src/main/java/raylab/surface/Box.java";
+    static final String SENTENCE = "Box uses Sphere.later, which you added to Sphere.java; the grader compiles Box.java"
+            + " with its own Sphere, not yours (each milestone is graded on its own): this will not compile there; put"
+            + " what Box needs in Box.java";
+
+    @TempDir
+    static Path dir;
+    static Path root = Path.of("").toAbsolutePath();
+    static Path copy;
+    static String sphere;
+    static String box;
+
+    /** A copy of the project with the release's manifest; Sphere given a public helper, Box using it. */
+    @BeforeAll
+    static void project() throws IOException {
+        copy = GradedBuildTest.released(root, dir.resolve("project"));
+        String s = Files.readString(copy.resolve(SPHERE));
+        String convex = "    @Override\n    public boolean isConvex() {";
+        assertTrue(s.contains(convex), "Sphere.isConvex");
+        sphere = s.replace(convex, "    /** The later of two times. */\n    public static double later(double a, double b) {\n"
+                + "        return Math.max(a, b);\n    }\n\n" + convex);
+        Files.writeString(copy.resolve(SPHERE), sphere);
+        String b = Files.readString(copy.resolve(BOX));
+        String enter = "double tEnter = Double.NEGATIVE_INFINITY;";
+        assertTrue(b.contains(enter), "Box's entry time");
+        box = b.replace(enter, "double tEnter = Sphere.later(Double.NEGATIVE_INFINITY, Double.NEGATIVE_INFINITY);");
+        Files.writeString(copy.resolve(BOX), box);
+    }
+
+    static Map<String, String> milestoneOf() throws IOException {
+        return SubmitCheckCommand.milestoneOf(Assignments.load(copy).all());
+    }
+
+    @Test
+    void theSharedAnalysisNamesTheUseAcrossMilestones() throws IOException {
+        Map<String, String> all = Map.of(SPHERE, sphere, BOX, box);
+        assertEquals(List.of(SENTENCE), GradedBuild.acrossMilestones(copy, Map.of(BOX, box), all, milestoneOf(),
+                JavaBuild.ownClassPath()), "box's file uses what only the student's Sphere has");
+        assertEquals(List.of(), GradedBuild.acrossMilestones(copy, Map.of(SPHERE, sphere), all, milestoneOf(),
+                JavaBuild.ownClassPath()), "the student's Sphere uses nothing of Box");
+        String plainBox = Files.readString(root.resolve(BOX));
+        assertEquals(List.of(), GradedBuild.acrossMilestones(copy, Map.of(BOX, plainBox), Map.of(SPHERE, sphere, BOX,
+                plainBox), milestoneOf(), JavaBuild.ownClassPath()), "the reference Box uses only what every Sphere has");
+    }
+
+    @Test
+    void submitCheckOfTheProjectNamesIt() throws IOException {
+        List<Assignment> both = List.of(Assignments.load(copy).byId("sphere").orElseThrow(),
+                Assignments.load(copy).byId("box").orElseThrow());
+        StringWriter text = new StringWriter();
+        int status = SubmitCheckCommand.project(new PrintWriter(text, true), copy, both, List.of());
+        String out = text.toString();
+        assertEquals(Main.FAILED, status, out);
+        assertTrue(out.contains("WILL NOT COMPILE AT THE GRADER: " + SENTENCE + "."), out);
+    }
+
+    @Test
+    void checkOfTheMilestoneNamesIt() throws Exception {
+        String[] c = GradedBuildTest.childIn(copy, "check", "box", "--threads", "1");
+        assertEquals("1", c[0], "exit status: " + c[1] + c[2]);
+        assertTrue(c[1].contains("WILL NOT COMPILE AT THE GRADER: " + SENTENCE + "."), c[1]);
+    }
+
+    @Test
+    void submitCheckOfAZipAndTheGraderSayTheSameSentence() throws Exception {
+        Path zip = dir.resolve("both.zip");
+        try (OutputStream f = Files.newOutputStream(zip); ZipOutputStream z = new ZipOutputStream(f)) {
+            for (String[] e : new String[][] {{"Sphere.java", sphere}, {"Box.java", box}}) {
+                z.putNextEntry(new ZipEntry(e[0]));
+                z.write(e[1].getBytes(StandardCharsets.UTF_8));
+                z.closeEntry();
+            }
+        }
+        String[] c = GradedBuildTest.childIn(copy, "submit-check", zip.toString());
+        assertEquals("1", c[0], "exit status: " + c[1] + c[2]);
+        assertTrue(c[1].contains("WILL NOT COMPILE AT THE GRADER: " + SENTENCE + "."), c[1]);
+
+        Path results = dir.resolve("results");
+        ByteArrayOutputStream err = new ByteArrayOutputStream();
+        int status = Main.run(new PrintWriter(new ByteArrayOutputStream(), true),
+                new PrintWriter(err, true, StandardCharsets.UTF_8), "grade", zip.toString(), "--out", results.toString(),
+                "--root", root.toString(), "--quiet", "--milestone", "box", "--test-timeout", "5",
+                "--milestone-timeout", "60", "--scene-timeout", "30", "--heap", "256", "--sandbox-user", "");
+        assertEquals(0, status, () -> err.toString(StandardCharsets.UTF_8));
+        JsonNode r = new ObjectMapper().readTree(results.resolve("results.json").toFile());
+        assertTrue(r.toString().contains(SENTENCE), "the grader's report: " + r);
+    }
+}
