@@ -40,8 +40,8 @@ class AcrossMilestonesTest {
     static final String SPHERE = "src/main/java/raylab/surface/Sphere.java";
     static final String BOX = "src/main/java/raylab/surface/Box.java";
     static final String SENTENCE = "Box uses Sphere.later, which you added to Sphere.java; the grader compiles Box.java"
-            + " with its own Sphere, not yours (each milestone is graded on its own): this will not compile there; put"
-            + " what Box needs in Box.java";
+            + " with its own Sphere.java, not yours (each milestone is graded on its own): this will not compile there;"
+            + " put what Box needs in Box.java";
 
     @TempDir
     static Path dir;
@@ -78,6 +78,15 @@ class AcrossMilestonesTest {
                 JavaBuild.ownClassPath()), "box's file uses what only the student's Sphere has");
         assertEquals(List.of(), GradedBuild.acrossMilestones(copy, Map.of(SPHERE, sphere), all, milestoneOf(),
                 JavaBuild.ownClassPath()), "the student's Sphere uses nothing of Box");
+        // A class of its own in Sphere.java, which Box names and Sphere does not.
+        String withClass = sphere + "\nfinal class Quadratic {\n    static double later(double a, double b) {\n"
+                + "        return Math.max(a, b);\n    }\n}\n";
+        String boxWithClass = box.replace("Sphere.later(", "Quadratic.later(");
+        String rest = ", which you added to Sphere.java; the grader compiles Box.java with its own Sphere.java, not yours"
+                + " (each milestone is graded on its own): this will not compile there; put what Box needs in Box.java";
+        assertEquals(List.of("Box uses Quadratic.later" + rest, "Box uses Quadratic" + rest),
+                GradedBuild.acrossMilestones(copy, Map.of(BOX, boxWithClass), Map.of(SPHERE, withClass, BOX, boxWithClass),
+                        milestoneOf(), JavaBuild.ownClassPath()), "a class of its own in Sphere.java, and its member");
         String plainBox = Files.readString(root.resolve(BOX));
         assertEquals(List.of(), GradedBuild.acrossMilestones(copy, Map.of(BOX, plainBox), Map.of(SPHERE, sphere, BOX,
                 plainBox), milestoneOf(), JavaBuild.ownClassPath()), "the reference Box uses only what every Sphere has");

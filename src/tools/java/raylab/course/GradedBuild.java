@@ -313,6 +313,18 @@ public final class GradedBuild {
             Trees t = Trees.instance(task);
             Elements elements = task.getElements();
             Types types = task.getTypes();
+            // Every top-level class of the student's own files, a second one of a file included.
+            for (CompilationUnitTree unit : trees) {
+                String unitPath = unit.getSourceFile().getName();
+                own.keySet().stream().filter(unitPath::endsWith).findFirst().ifPresent(f -> {
+                    for (Tree decl : unit.getTypeDecls()) {
+                        Element e = t.getElement(new TreePath(new TreePath(unit), decl));
+                        if (e instanceof TypeElement te) {
+                            ownByClass.putIfAbsent(te.getQualifiedName().toString(), f);
+                        }
+                    }
+                });
+            }
             for (CompilationUnitTree unit : trees) {
                 String unitPath = unit.getSourceFile().getName();
                 if (graded.keySet().stream().noneMatch(g -> unitPath.endsWith(g))) {
@@ -382,7 +394,7 @@ public final class GradedBuild {
     public static String acrossSentence(String user, String what, String owner, String file) {
         String fileName = file.substring(file.lastIndexOf('/') + 1);
         return user + " uses " + what + ", which you added to " + fileName + "; the grader compiles " + user
-                + ".java with its own " + owner + ", not yours (each milestone is graded on its own): this will not"
+                + ".java with its own " + fileName + ", not yours (each milestone is graded on its own): this will not"
                 + " compile there; put what " + user + " needs in " + user + ".java";
     }
 
@@ -424,10 +436,9 @@ public final class GradedBuild {
         for (var e : byMilestone.entrySet()) {
             Map<String, String> named = new LinkedHashMap<>();
             all.forEach((f, text) -> {
-                String simple = classNameOf(f).substring(classNameOf(f).lastIndexOf('.') + 1);
                 boolean other = !e.getKey().equals(milestoneOf.getOrDefault(f, f));
-                if (other && text != null && e.getValue().values().stream().anyMatch(t -> t != null
-                        && java.util.regex.Pattern.compile("\\b" + simple + "\\b").matcher(t).find())) {
+                if (other && text != null && typesDeclared(text).stream().anyMatch(type -> e.getValue().values().stream()
+                        .anyMatch(t -> t != null && java.util.regex.Pattern.compile("\\b" + type + "\\b").matcher(t).find()))) {
                     named.put(f, text);
                 }
             });
@@ -444,6 +455,21 @@ public final class GradedBuild {
             c = c.getEnclosingElement();
         }
         return c instanceof TypeElement t ? t : null;
+    }
+
+    /**
+     * The names of the types a source declares, nested ones and a few capitalised words of its
+     * comments too ("class Sphere", "record Roots"; a type named in lower case is missed): only to
+     * choose which other files to compile with a file that names one, so more is harmless.
+     */
+    static Set<String> typesDeclared(String text) {
+        Set<String> out = new LinkedHashSet<>();
+        java.util.regex.Matcher m = java.util.regex.Pattern.compile("\\b(?:class|interface|enum|record)\\s+([A-Z][\\w$]*)")
+                .matcher(text);
+        while (m.find()) {
+            out.add(m.group(1));
+        }
+        return out;
     }
 
     /** The class a source declares, from its path: .../raylab/math/Vec3.java is raylab.math.Vec3. */
