@@ -415,10 +415,10 @@ public final class GradedBuild {
     }
 
     /**
-     * The grader's side of {@link #acrossMilestones}, after milestone {@code milestone}'s files
-     * ({@code graded}) did not compile against {@code classPath}, which holds its own classes of
-     * the other milestones: the uses of what the submission's other graded files ({@code all})
-     * have and those classes have not.
+     * The grader's side of {@link #acrossMilestones}, after one milestone's files ({@code graded})
+     * did not compile against {@code classPath}, which holds the grader's own classes of the other
+     * milestones: the uses of what the submission's other graded files ({@code all}) have and those
+     * classes have not.
      */
     public static List<String> acrossAtGrader(Map<String, String> graded, Map<String, String> all,
             Map<String, String> milestoneOf, List<Path> classPath) throws IOException {
@@ -438,7 +438,8 @@ public final class GradedBuild {
             all.forEach((f, text) -> {
                 boolean other = !e.getKey().equals(milestoneOf.getOrDefault(f, f));
                 if (other && text != null && typesDeclared(text).stream().anyMatch(type -> e.getValue().values().stream()
-                        .anyMatch(t -> t != null && java.util.regex.Pattern.compile("\\b" + type + "\\b").matcher(t).find()))) {
+                        .anyMatch(t -> t != null && java.util.regex.Pattern.compile("\\b" + java.util.regex.Pattern.quote(type)
+                                + "\\b").matcher(t).find()))) {
                     named.put(f, text);
                 }
             });
