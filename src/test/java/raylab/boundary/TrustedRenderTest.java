@@ -15,7 +15,7 @@ import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
 
 /**
- * {@link TrustedRender#renderAll}'s time limit: once the deadline has passed, each scene left
+ * {@link TrustedRender#renderAll}'s time limit: once its budget of CPU time is spent, each scene left
  * says so ({@code OUT.png.timeout}, which the grader reports as "the renders took longer than
  * N s") and leaves no image and no error line; nothing is asked of a student process.
  */
@@ -24,14 +24,14 @@ class TrustedRenderTest {
     Path dir;
 
     @Test
-    void aPassedDeadlineMarksEveryRemainingSceneAsLate() throws Exception {
+    void aSpentBudgetMarksEveryRemainingSceneAsLate() throws Exception {
         Path root = Path.of(System.getProperty("raylab.grade.root", ".")).toAbsolutePath().normalize();
         Path a = dir.resolve("a.png");
         Path b = dir.resolve("b.png");
         ByteArrayOutputStream times = new ByteArrayOutputStream();
         TrustedRender.renderAll(List.of(root.resolve("scenes/sphere.json").toString(), a.toString(), "scenes/sphere.json",
                 root.resolve("scenes/boxes.json").toString(), b.toString(), "scenes/boxes.json"),
-                System.nanoTime() - 1, new PrintStream(times, true, StandardCharsets.UTF_8));
+                -1, new PrintStream(times, true, StandardCharsets.UTF_8));
         for (Path png : List.of(a, b)) {
             assertTrue(Files.isRegularFile(Path.of(png + ".timeout")), png + ".timeout is written");
             assertFalse(Files.exists(png), png + " is not written");

@@ -336,6 +336,20 @@ class GraderAttackTest {
         double score(String m) {
             return score.getOrDefault(m, 0.0);
         }
+
+        /** Milestone m's items that lost points, each with what the report says of it (for failure messages). */
+        String lost(String m) {
+            StringBuilder b = new StringBuilder();
+            for (JsonNode t : results.get("tests")) {
+                if (t.get("tags").get(0).asText().equals(m) && t.get("score").asDouble() < t.get("max_score").asDouble()) {
+                    String said = t.path("output").asText("");
+                    b.append("\n  ").append(t.get("name").asText()).append(": ").append(t.get("score").asDouble())
+                            .append(" of ").append(t.get("max_score").asDouble()).append(": ")
+                            .append(said.length() > 400 ? said.substring(0, 400) + " ..." : said);
+                }
+            }
+            return b.length() == 0 ? " (no item lost points)" : b.toString();
+        }
     }
 
     /** Milestones of the student files named. */
@@ -472,8 +486,8 @@ class GraderAttackTest {
                 assertTrue(attack.score(m) <= disarmed.score(m) + 1e-9, m + ": no point from the attack: attacked "
                         + attack.score(m) + ", without the attack " + disarmed.score(m) + " (of " + attack.max().get(m) + ")");
             } else {
-                assertEquals(attack.max().get(m), attack.score(m), 1e-9, m + " (reference code) is not affected by the"
-                        + " attacks beside it: full marks expected");
+                assertEquals(attack.max().get(m), attack.score(m), 1e-9, () -> m + " (reference code) is not affected by the"
+                        + " attacks beside it: full marks expected; lost:" + attack.lost(m));
             }
         }
     }

@@ -33,9 +33,12 @@ public interface BoundaryHooks {
 
     /**
      * Renders the scenes of {@code scenes} (lines of SCENE.json, OUT.png and NAME) with the
-     * student's code, until {@code deadlineNanos} ({@link System#nanoTime}); phases to {@code times}.
+     * student's code, until it has used {@code cpuBudgetNanos} of the student's CPU time from
+     * the first scene on ({@link Long#MAX_VALUE}: no limit); phases to {@code times}. A budget,
+     * not a wall-clock deadline: the time the grader takes to start the student process on a
+     * loaded machine is not the student's.
      */
-    void renderAll(List<String> scenes, long deadlineNanos, PrintStream times) throws IOException;
+    void renderAll(List<String> scenes, long cpuBudgetNanos, PrintStream times) throws IOException;
 
     /** This build's provider, or empty (the starter, or a provider this build cannot make). */
     static Optional<BoundaryHooks> find() {

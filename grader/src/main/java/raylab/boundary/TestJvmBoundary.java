@@ -39,7 +39,7 @@ public final class TestJvmBoundary implements BoundaryHooks {
     }
 
     @Override
-    public void renderAll(List<String> scenes, long deadlineNanos, PrintStream times) throws IOException {
-        TrustedRender.renderAll(scenes, deadlineNanos, times);
+    public void renderAll(List<String> scenes, long cpuBudgetNanos, PrintStream times) throws IOException {
+        TrustedRender.renderAll(scenes, cpuBudgetNanos, times);
     }
 }

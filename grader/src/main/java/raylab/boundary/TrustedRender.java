@@ -206,7 +206,7 @@ public final class TrustedRender {
         return set;
     }
 
-    /** Thrown through a render when the renders' time is up ({@link #renderAll}'s deadline). */
+    /** Thrown through a render when the renders' time is up ({@link #renderAll}'s CPU budget is spent). */
     static final class OutOfTime extends RuntimeException {
         private static final long serialVersionUID = 1L;
 
@@ -246,16 +246,17 @@ public final class TrustedRender {
      * Renders the scenes of {@code args} (triples SCENE.json OUT.png NAME) one after the other with
      * this JVM's student process, batched by the milestone's reference named in the system
      * property {@code raylab.boundary.references} if it is set. A scene that fails leaves
-     * {@code OUT.png.err} (its first line says why); once the student's code has used as much
-     * CPU time as there is from now to {@code deadlineNanos} ({@link System#nanoTime}: the
-     * renders' limit), the scene being rendered and those after it leave {@code OUT.png.timeout}
-     * instead. A batched render also leaves the reference solution's
-     * image, {@code OUT.png.reference.png}, when its first rounds traced every pixel ({@link Long#MAX_VALUE}: no deadline). Timings go to {@code times} when RAYLAB_GRADE_TIMES is set.
+     * {@code OUT.png.err} (its first line says why); once the student's code has used
+     * {@code cpuBudgetNanos} of CPU time from now on (the renders' limit; {@link Long#MAX_VALUE}:
+     * none), the scene being rendered and those after it leave {@code OUT.png.timeout} instead.
+     * A batched render also leaves the reference solution's image, {@code OUT.png.reference.png},
+     * when its first rounds traced every pixel. Timings go to {@code times} when
+     * RAYLAB_GRADE_TIMES is set.
      */
-    public static void renderAll(java.util.List<String> args, long deadlineNanos, java.io.PrintStream times)
+    public static void renderAll(java.util.List<String> args, long cpuBudgetNanos, java.io.PrintStream times)
             throws java.io.IOException {
-        timed = deadlineNanos != Long.MAX_VALUE;
-        budget = deadlineNanos - System.nanoTime();
+        timed = cpuBudgetNanos != Long.MAX_VALUE;
+        budget = cpuBudgetNanos;
         if (timed && budget >= 0) {
             cpuAtStart = Remote.process().studentCpuNanos();
             Remote.process().beforeEachFrame(TrustedRender::checkTime);
@@ -412,8 +413,7 @@ public final class TrustedRender {
         // -Draylab.boundary.renderSeconds=S: the renders' limit, S s of the student's CPU time (the grader's
         // render JVM of a milestone without tests); without it, none.
         long seconds = Long.getLong("raylab.boundary.renderSeconds", -1);
-        renderAll(java.util.Arrays.asList(args), seconds < 0 ? Long.MAX_VALUE : System.nanoTime() + seconds * 1_000_000_000L,
-                System.err);
+        renderAll(java.util.Arrays.asList(args), seconds < 0 ? Long.MAX_VALUE : seconds * 1_000_000_000L, System.err);
         if (Boolean.getBoolean("raylab.boundary.exit")) {
             System.exit(0); // shutdown hooks run (a profiler's dump on exit; measurements only)
         }
