@@ -103,11 +103,45 @@ class AcrossMilestonesTest {
         assertTrue(out.contains("WILL NOT COMPILE AT THE GRADER: " + SENTENCE + "."), out);
     }
 
+    /**
+     * {@code check box} names it, and neither its table nor Classroom 50's result.json (feedback on a
+     * Release) gives the box tests' points, which pass in the checkout: the grader will score box 0.
+     * Before, the table said "done" with 3.6/3.6 points above the WILL NOT COMPILE line, and
+     * result.json gave 360 of 360.
+     */
     @Test
-    void checkOfTheMilestoneNamesIt() throws Exception {
-        String[] c = GradedBuildTest.childIn(copy, "check", "box", "--threads", "1");
+    void checkOfTheMilestoneNamesItAndScoresItAsTheGraderWill() throws Exception {
+        Path result = dir.resolve("result.json");
+        String[] c = GradedBuildTest.childIn(copy, "check", "box", "--threads", "1", "--classroom50", result.toString());
         assertEquals("1", c[0], "exit status: " + c[1] + c[2]);
         assertTrue(c[1].contains("WILL NOT COMPILE AT THE GRADER: " + SENTENCE + "."), c[1]);
+        String row = c[1].lines().filter(l -> l.startsWith("box ")).findFirst().orElse("(no row for box)");
+        assertTrue(row.matches("box +(\\d+)/\\1 +(\\d+)/\\2 +0/[0-9.]+ +will not compile at the grader \\(below\\): 0 points there"),
+                "the table's row: every test passes and every scene matches in the checkout, and 0 points: " + row);
+        JsonNode r = raylab.grade.platform.PlatformSchemas.classroom50(Files.readString(result));
+        assertEquals(0, r.get("score").asLong(), "Classroom 50's score: " + r);
+        assertTrue(r.get("max-score").asLong() > 0, "the box items are all there: " + r);
+        int passedHere = 0;
+        for (JsonNode t : r.get("tests")) {
+            assertEquals("box", t.get("milestone").asText(), t.toString());
+            assertEquals(false, t.get("passed").asBoolean(), t.toString());
+            assertEquals(0, t.get("score").asLong(), t.toString());
+            assertEquals("will not compile at the grader: " + SENTENCE + " (it passes in this checkout, whose build uses"
+                    + " your own files)", t.get("message").asText(), t.toString());
+            passedHere++;
+        }
+        assertTrue(passedHere > 10, "box's tests, data cases and scenes: " + passedHere);
+    }
+
+    @Test
+    void ofSeveralMilestonesOnlyTheOneThatUsesTheOtherWillNotCompile() throws IOException {
+        List<Assignment> all = Assignments.load(copy).all();
+        List<Assignment> both = List.of(Assignments.load(copy).byId("sphere").orElseThrow(),
+                Assignments.load(copy).byId("box").orElseThrow());
+        GradedBuild.Drift d = SubmitCheckCommand.drift(copy, SubmitCheckCommand.projectFiles(copy, both),
+                SubmitCheckCommand.projectFiles(copy, all), all, JavaBuild.ownClassPath());
+        assertEquals(Map.of("box", List.of(SENTENCE)), CheckCommand.wontCompile(copy, both, all, d),
+                "box uses what only the student's Sphere has; sphere compiles at the grader as it is");
     }
 
     @Test

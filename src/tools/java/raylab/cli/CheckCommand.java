@@ -5,6 +5,7 @@ import java.io.PrintWriter;
 import java.nio.file.Path;
 import java.util.ArrayList;
 import java.util.List;
+import java.util.Map;
 import java.util.concurrent.Callable;
 
 import picocli.CommandLine.Command;
@@ -74,14 +75,18 @@ public final class CheckCommand implements Callable<Integer> {
         for (MilestoneCheck.Outcome o : outcomes) {
             printDetails(out, o);
         }
-        printTable(out, outcomes);
-        // What the grader builds differently: it never uses the student's copy of the framework.
-        boolean breaks = SubmitCheckCommand.printDrift(out, SubmitCheckCommand.drift(root,
+        // What the grader builds differently: it never uses the student's copy of the framework,
+        // nor the student's files of another milestone. A milestone that will not compile there
+        // scores 0 in the table and in Classroom 50's result, as the grader will score it.
+        raylab.course.GradedBuild.Drift drift = SubmitCheckCommand.drift(root,
                 SubmitCheckCommand.projectFiles(root, selected), SubmitCheckCommand.projectFiles(root, all.all()),
-                all.all(), raylab.course.JavaBuild.ownClassPath()));
+                all.all(), raylab.course.JavaBuild.ownClassPath());
+        Map<String, List<String>> wontCompile = wontCompile(root, selected, all.all(), drift);
+        printTable(out, outcomes, wontCompile);
+        boolean breaks = SubmitCheckCommand.printDrift(out, drift);
         out.flush();
         if (classroom50 != null) {
-            raylab.course.Classroom50Result.write(classroom50, outcomes, System.getenv(), root);
+            raylab.course.Classroom50Result.write(classroom50, outcomes, wontCompile, System.getenv(), root);
         }
         return !breaks && outcomes.stream().allMatch(MilestoneCheck.Outcome::done) ? Main.OK : Main.FAILED;
     }
@@ -178,23 +183,56 @@ public final class CheckCommand implements Callable<Integer> {
         return raylab.course.MilestoneCheck.oneLine(t, 160);
     }
 
+    /**
+     * The milestones of {@code selected} whose files will not compile at the grader, each with the
+     * sentences that say why ({@link SubmitCheckCommand#drift} of its files alone); empty when the
+     * drift of all of them has no such use (then nothing more is compiled).
+     */
+    static Map<String, List<String>> wontCompile(Path root, List<Assignment> selected, List<Assignment> all,
+            raylab.course.GradedBuild.Drift drift) throws IOException {
+        Map<String, List<String>> out = new java.util.LinkedHashMap<>();
+        if (drift == null || drift.uses().isEmpty()) {
+            return out;
+        }
+        if (selected.size() == 1) {
+            out.put(selected.get(0).id(), drift.uses());
+            return out;
+        }
+        Map<String, String> allFiles = SubmitCheckCommand.projectFiles(root, all);
+        for (Assignment a : selected) {
+            raylab.course.GradedBuild.Drift d = SubmitCheckCommand.drift(root, SubmitCheckCommand.projectFiles(root,
+                    List.of(a)), allFiles, all, raylab.course.JavaBuild.ownClassPath());
+            if (d != null && !d.uses().isEmpty()) {
+                out.put(a.id(), d.uses());
+            }
+        }
+        return out;
+    }
+
     static void printTable(PrintWriter out, List<MilestoneCheck.Outcome> outcomes) {
+        printTable(out, outcomes, Map.of());
+    }
+
+    /** The summary table; a milestone of {@code wontCompile} scores 0, as at the grader. */
+    static void printTable(PrintWriter out, List<MilestoneCheck.Outcome> outcomes, Map<String, List<String>> wontCompile) {
         String fmt = "%-10s %-14s %-16s %-15s %s%n";
         out.println();
         out.printf(fmt, "milestone", "tests passed", "scenes matching", "visible points", "next");
         long earned = 0;
         long visible = 0;
         for (MilestoneCheck.Outcome o : outcomes) {
+            boolean breaks = wontCompile.containsKey(o.assignment().id());
             String tests = o.problem().isEmpty() || !o.tests().isEmpty()
                     ? o.testsPassed() + "/" + o.testCount() : "-";
-            String points = o.plan() == null ? "-" : raylab.course.GradingPlan.points(o.earnedCents()) + "/"
+            long mine = breaks ? 0 : o.earnedCents();
+            String points = o.plan() == null ? "-" : raylab.course.GradingPlan.points(mine) + "/"
                     + raylab.course.GradingPlan.points(o.plan().visibleCents());
             if (o.plan() != null) {
-                earned += o.earnedCents();
+                earned += mine;
                 visible += o.plan().visibleCents();
             }
             out.printf(fmt, o.assignment().id(), tests, o.scenesMatching() + "/" + o.scenes().size(), points,
-                    o.nextStep());
+                    breaks ? "will not compile at the grader (below): 0 points there" : o.nextStep());
         }
         out.println("visible total: " + raylab.course.GradingPlan.points(earned) + " / "
                 + raylab.course.GradingPlan.points(visible) + " points"

@@ -22,7 +22,10 @@ import com.fasterxml.jackson.databind.SerializationFeature;
  * scenes, nothing hidden (the hidden parts are never in the student's repository, nor in the
  * autograder Classroom 50 runs there, which is public). Classroom 50 wants integer scores: each
  * test's {@code score} and {@code max-score} are in hundredths of a point (a 0.36-point test is
- * 36), and the exact points are beside them as {@code points} and {@code max-points}.
+ * 36), and the exact points are beside them as {@code points} and {@code max-points}. A milestone
+ * whose files will not compile at the grader (its files use what only the student's copy of the
+ * framework, or the student's file of another milestone, has) scores 0 here as it will there, each
+ * item with the sentence that says why: the checkout's own build passing is not the grade.
  */
 public final class Classroom50Result {
     public static final String SCHEMA = "classroom50/result/v1";
@@ -32,8 +35,13 @@ public final class Classroom50Result {
     private Classroom50Result() {
     }
 
-    /** The result for these outcomes, with identity fields from {@code env} and the submission instant. */
-    public static Map<String, Object> of(List<MilestoneCheck.Outcome> outcomes, Map<String, String> env, Instant when) {
+    /**
+     * The result for these outcomes, with identity fields from {@code env} and the submission
+     * instant; the milestones of {@code wontCompile} (id to the sentences of {@code raylab check}'s
+     * "WILL NOT COMPILE AT THE GRADER" lines) score 0.
+     */
+    public static Map<String, Object> of(List<MilestoneCheck.Outcome> outcomes, Map<String, List<String>> wontCompile,
+            Map<String, String> env, Instant when) {
         List<Map<String, Object>> tests = new ArrayList<>();
         long score = 0;
         long max = 0;
@@ -50,9 +58,13 @@ public final class Classroom50Result {
                 t.put("message", o.problem());
                 tests.add(t);
             }
+            List<String> why = wontCompile.getOrDefault(id, List.of());
+            String atGrader = why.isEmpty() ? "" : "will not compile at the grader: " + String.join("; and ", why)
+                    + " (it passes in this checkout, whose build uses your own files)";
             for (MilestoneCheck.Outcome.Row r : rows) {
                 GradingPlan.Item i = r.item();
-                long earned = r.passed() ? i.cents() : 0;
+                boolean passed = r.passed() && why.isEmpty();
+                long earned = passed ? i.cents() : 0;
                 Map<String, Object> t = new LinkedHashMap<>();
                 String kind = switch (i.kind()) {
                     case TEST -> "test";
@@ -60,14 +72,14 @@ public final class Classroom50Result {
                     case SCENE -> "scene";
                 };
                 t.put("test-name", id + ": " + (i.kind() == GradingPlan.Kind.CASE ? "data case " : "") + i.name());
-                t.put("passed", r.passed());
+                t.put("passed", passed);
                 t.put("score", earned);
                 t.put("max-score", i.cents());
                 t.put("milestone", id);
                 t.put("kind", kind);
                 t.put("points", GradingPlan.points(earned));
                 t.put("max-points", GradingPlan.points(i.cents()));
-                t.put("message", r.passed() ? "" : oneParagraph(r.message()));
+                t.put("message", passed ? "" : oneParagraph(!atGrader.isEmpty() ? atGrader : r.message()));
                 tests.add(t);
                 score += earned;
                 max += i.cents();
@@ -92,9 +104,9 @@ public final class Classroom50Result {
     }
 
     /** Writes the result to {@code file} (a temporary file beside it, renamed over it). */
-    public static void write(Path file, List<MilestoneCheck.Outcome> outcomes, Map<String, String> env, Path checkout)
-            throws IOException {
-        String text = JSON.writeValueAsString(of(outcomes, env, commitInstant(checkout)));
+    public static void write(Path file, List<MilestoneCheck.Outcome> outcomes, Map<String, List<String>> wontCompile,
+            Map<String, String> env, Path checkout) throws IOException {
+        String text = JSON.writeValueAsString(of(outcomes, wontCompile, env, commitInstant(checkout)));
         Path abs = file.toAbsolutePath();
         Path tmp = Files.createTempFile(abs.getParent(), "." + abs.getFileName(), ".tmp");
         try {
