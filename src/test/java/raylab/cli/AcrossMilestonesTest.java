@@ -101,6 +101,11 @@ class AcrossMilestonesTest {
         String out = text.toString();
         assertEquals(Main.FAILED, status, out);
         assertTrue(out.contains("WILL NOT COMPILE AT THE GRADER: " + SENTENCE + "."), out);
+        // Box's row does not say "finished" above that line; Sphere's, which compiles there, does.
+        assertTrue(out.contains("  box      " + BOX + " ".repeat(46 - BOX.length())
+                + " WILL NOT COMPILE AT THE GRADER (below): 0 points there\n"), out);
+        assertTrue(out.matches("(?s).*  sphere   " + java.util.regex.Pattern.quote(SPHERE)
+                + " +finished: its \\d+ visible tests pass\n.*"), out);
     }
 
     /**
@@ -140,7 +145,8 @@ class AcrossMilestonesTest {
                 Assignments.load(copy).byId("box").orElseThrow());
         GradedBuild.Drift d = SubmitCheckCommand.drift(copy, SubmitCheckCommand.projectFiles(copy, both),
                 SubmitCheckCommand.projectFiles(copy, all), all, JavaBuild.ownClassPath());
-        assertEquals(Map.of("box", List.of(SENTENCE)), CheckCommand.wontCompile(copy, both, all, d),
+        assertEquals(Map.of("box", List.of(SENTENCE)), SubmitCheckCommand.wontCompile(copy, both, all, d,
+                JavaBuild.ownClassPath()),
                 "box uses what only the student's Sphere has; sphere compiles at the grader as it is");
     }
 

@@ -81,7 +81,8 @@ public final class CheckCommand implements Callable<Integer> {
         raylab.course.GradedBuild.Drift drift = SubmitCheckCommand.drift(root,
                 SubmitCheckCommand.projectFiles(root, selected), SubmitCheckCommand.projectFiles(root, all.all()),
                 all.all(), raylab.course.JavaBuild.ownClassPath());
-        Map<String, List<String>> wontCompile = wontCompile(root, selected, all.all(), drift);
+        Map<String, List<String>> wontCompile = SubmitCheckCommand.wontCompile(root, selected, all.all(), drift,
+                raylab.course.JavaBuild.ownClassPath());
         printTable(out, outcomes, wontCompile);
         boolean breaks = SubmitCheckCommand.printDrift(out, drift);
         out.flush();
@@ -181,32 +182,6 @@ public final class CheckCommand implements Callable<Integer> {
         int nl = t.indexOf('\n');
         t = nl < 0 ? t : t.substring(0, nl);
         return raylab.course.MilestoneCheck.oneLine(t, 160);
-    }
-
-    /**
-     * The milestones of {@code selected} whose files will not compile at the grader, each with the
-     * sentences that say why ({@link SubmitCheckCommand#drift} of its files alone); empty when the
-     * drift of all of them has no such use (then nothing more is compiled).
-     */
-    static Map<String, List<String>> wontCompile(Path root, List<Assignment> selected, List<Assignment> all,
-            raylab.course.GradedBuild.Drift drift) throws IOException {
-        Map<String, List<String>> out = new java.util.LinkedHashMap<>();
-        if (drift == null || drift.uses().isEmpty()) {
-            return out;
-        }
-        if (selected.size() == 1) {
-            out.put(selected.get(0).id(), drift.uses());
-            return out;
-        }
-        Map<String, String> allFiles = SubmitCheckCommand.projectFiles(root, all);
-        for (Assignment a : selected) {
-            raylab.course.GradedBuild.Drift d = SubmitCheckCommand.drift(root, SubmitCheckCommand.projectFiles(root,
-                    List.of(a)), allFiles, all, raylab.course.JavaBuild.ownClassPath());
-            if (d != null && !d.uses().isEmpty()) {
-                out.put(a.id(), d.uses());
-            }
-        }
-        return out;
     }
 
     static void printTable(PrintWriter out, List<MilestoneCheck.Outcome> outcomes) {

@@ -150,6 +150,9 @@ public final class SubmitCheckCommand implements Callable<Integer> {
         out.println("The files graded, milestone by milestone (upload these; see \"Submitting\" in README.md):");
         int present = 0;
         List<String> details = new ArrayList<>();
+        Map<String, String> graded = projectFiles(root, assignments);
+        GradedBuild.Drift drift = drift(root, graded, graded, assignments, withFirst(first));
+        Map<String, List<String>> wontCompile = wontCompile(root, assignments, assignments, drift, withFirst(first));
         for (Assignment a : assignments) {
             for (Assignment.StudentFile f : a.files()) {
                 Path p = root.resolve(f.path());
@@ -157,7 +160,9 @@ public final class SubmitCheckCommand implements Callable<Integer> {
                 if (Files.isRegularFile(p)) {
                     present++;
                     String stub = stubNote(Files.readString(p, StandardCharsets.UTF_8)).strip();
-                    state = !stub.isEmpty() ? stub.substring(1, stub.length() - 1) : finished(outcomes.get(a.id()), details);
+                    state = !stub.isEmpty() ? stub.substring(1, stub.length() - 1)
+                            : wontCompile.containsKey(a.id()) ? "WILL NOT COMPILE AT THE GRADER (below): 0 points there"
+                            : finished(outcomes.get(a.id()), details);
                 } else {
                     state = "MISSING";
                 }
@@ -166,8 +171,7 @@ public final class SubmitCheckCommand implements Callable<Integer> {
         }
         details.stream().distinct().forEach(out::println);
         out.println("Nothing else is graded: the grader uses its own copy of every other file.");
-        Map<String, String> graded = projectFiles(root, assignments);
-        boolean breaks = printDrift(out, drift(root, graded, graded, assignments, withFirst(first)));
+        boolean breaks = printDrift(out, drift);
         tagWarnings(root, assignments).forEach(out::println);
         out.println("To check a zip before uploading it: ./raylab submit-check FILE.zip");
         return present == 0 || breaks ? Main.FAILED : Main.OK;
@@ -321,6 +325,31 @@ public final class SubmitCheckCommand implements Callable<Integer> {
         GradedBuild.Drift d = GradedBuild.check(root, graded, studentFiles(assignments), classPath);
         return d == null ? null : d.with(GradedBuild.acrossMilestones(root, graded, all, milestoneOf(assignments),
                 classPath));
+    }
+
+    /**
+     * The milestones of {@code selected} whose files will not compile at the grader, each with the
+     * sentences that say why ({@link #drift} of its files alone, among {@code all}); empty when
+     * {@code drift}, that of them all, has no such use (then nothing more is compiled).
+     */
+    static Map<String, List<String>> wontCompile(Path root, List<Assignment> selected, List<Assignment> all,
+            GradedBuild.Drift drift, List<Path> classPath) throws IOException {
+        Map<String, List<String>> out = new LinkedHashMap<>();
+        if (drift == null || drift.uses().isEmpty()) {
+            return out;
+        }
+        if (selected.size() == 1) {
+            out.put(selected.get(0).id(), drift.uses());
+            return out;
+        }
+        Map<String, String> allFiles = projectFiles(root, all);
+        for (Assignment a : selected) {
+            GradedBuild.Drift d = drift(root, projectFiles(root, List.of(a)), allFiles, all, classPath);
+            if (d != null && !d.uses().isEmpty()) {
+                out.put(a.id(), d.uses());
+            }
+        }
+        return out;
     }
 
     /** Each graded file's milestone, by path. */
