@@ -59,8 +59,7 @@ public final class Classroom50Result {
                 tests.add(t);
             }
             List<String> why = wontCompile.getOrDefault(id, List.of());
-            String atGrader = why.isEmpty() ? "" : "will not compile at the grader: " + String.join("; and ", why)
-                    + " (it passes in this checkout, whose build uses your own files)";
+            String atGrader = why.isEmpty() ? "" : "will not compile at the grader: " + String.join("; and ", why);
             for (MilestoneCheck.Outcome.Row r : rows) {
                 GradingPlan.Item i = r.item();
                 boolean passed = r.passed() && why.isEmpty();
@@ -79,7 +78,8 @@ public final class Classroom50Result {
                 t.put("kind", kind);
                 t.put("points", GradingPlan.points(earned));
                 t.put("max-points", GradingPlan.points(i.cents()));
-                t.put("message", passed ? "" : oneParagraph(!atGrader.isEmpty() ? atGrader : r.message()));
+                t.put("message", passed ? "" : oneParagraph(atGrader.isEmpty() ? r.message() : atGrader
+                        + (r.passed() ? " (it passes in this checkout, whose build uses your own files)" : "")));
                 tests.add(t);
                 score += earned;
                 max += i.cents();
