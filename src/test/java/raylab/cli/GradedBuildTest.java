@@ -149,6 +149,10 @@ class GradedBuildTest {
         String[] c = child("check", "sphere", "--threads", "1");
         assertEquals("1", c[0], "exit status: " + c[1] + c[2]);
         assertTrue(c[1].contains("WILL NOT COMPILE AT THE GRADER: " + SENTENCE + "."), c[1]);
+        // The edit is the framework's, not another milestone's: the row scores sphere as the grader will.
+        String row = c[1].lines().filter(l -> l.startsWith("sphere ")).findFirst().orElse("(no row for sphere)");
+        assertTrue(row.matches("sphere +(\\d+)/\\1 +(\\d+)/\\2 +0/[0-9.]+ +will not compile at the grader \\(below\\): 0 points there"),
+                "the table's row: every test passes and every scene matches in the checkout, and 0 points: " + row);
     }
 
     @Test
@@ -178,5 +182,6 @@ class GradedBuildTest {
         assertEquals(0, status, () -> err.toString(StandardCharsets.UTF_8));
         JsonNode r = new ObjectMapper().readTree(results.resolve("results.json").toFile());
         assertTrue(r.toString().contains(SENTENCE), "the grader's report: " + r);
+        assertEquals(0.0, r.get("score").asDouble(), "the grader's score of sphere, which does not compile there: " + r);
     }
 }

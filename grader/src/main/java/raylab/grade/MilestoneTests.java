@@ -126,7 +126,9 @@ final class MilestoneTests {
                 } catch (NumberFormatException e) {
                     ms = 0; // stopped before the renders ended
                 }
-                renders = new SceneGrading.Renders(SceneGrading.read(pngs), !o.finished() && o.timedOut(), false, ms);
+                // On this path the test JVM renders the scenes: why it did not finish is the launcher's problem.
+                renders = new SceneGrading.Renders(SceneGrading.read(pngs), !o.finished() && o.timedOut(), false, ms,
+                        o.finished() || o.timedOut() ? "" : o.problem());
                 Path times = dir.resolve("render").resolve("times.txt");
                 if (GradingRun.TIMES && Files.isRegularFile(times)) {
                     System.err.print(Files.readString(times));

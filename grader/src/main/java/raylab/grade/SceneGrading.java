@@ -53,8 +53,10 @@ final class SceneGrading {
      * @param timedOut    the JVM that rendered them was stopped by its wall-clock guard
      * @param outOfMemory the render JVM ran out of memory
      * @param millis      the time of one scene
+     * @param ended       how the JVM that rendered them ended early and what it said (its exit status,
+     *                    the first line of its standard error), for the course staff; "" when it did not
      */
-    record Renders(List<Render> scenes, boolean timedOut, boolean outOfMemory, long millis) {
+    record Renders(List<Render> scenes, boolean timedOut, boolean outOfMemory, long millis, String ended) {
     }
 
     /**
@@ -139,10 +141,14 @@ final class SceneGrading {
         boolean timedOut = false;
         List<Render> renders;
         Process p = null;
+        // The render JVM's standard error is the JVM's and the grader's own (the student's code runs
+        // in its student process): its first line names why it did not start or ended early.
+        Path err = dir.resolve("render-jvm.err");
+        String said = "";
         try {
             ProcessBuilder pb = new ProcessBuilder(cmd).directory(dir.toFile())
                     .redirectOutput(ProcessBuilder.Redirect.DISCARD)
-                    .redirectError(GradingRun.TIMES ? ProcessBuilder.Redirect.INHERIT : ProcessBuilder.Redirect.DISCARD);
+                    .redirectError(GradingRun.TIMES ? ProcessBuilder.Redirect.INHERIT : ProcessBuilder.Redirect.to(err.toFile()));
             p = pb.start();
             p.getOutputStream().close();
             try {
@@ -156,6 +162,7 @@ final class SceneGrading {
             JavaBuild.stop(p);
             // Read what the child left only once it is gone.
             renders = read(pngs);
+            said = firstLineOf(err);
         } finally {
             if (p != null) {
                 p.descendants().forEach(ProcessHandle::destroyForcibly);
@@ -167,7 +174,27 @@ final class SceneGrading {
         long ms = (System.nanoTime() - t0) / 1_000_000 / a.scenes().size();
         // -XX:+ExitOnOutOfMemoryError ends the JVM with status 3 when the heap runs out.
         boolean outOfMemory = p != null && !timedOut && !p.isAlive() && p.exitValue() == 3;
-        return score(run, a, new Renders(renders, timedOut, outOfMemory, ms), limit);
+        String ended = p == null || timedOut || p.isAlive() || p.exitValue() == 0 ? ""
+                : "exit status " + p.exitValue() + (said.isEmpty() ? "" : "; it said: " + said);
+        return score(run, a, new Renders(renders, timedOut, outOfMemory, ms, ended), limit);
+    }
+
+    /** The first non-blank line of the first 8 KB of {@code f}, control characters dropped; "" if none. */
+    static String firstLineOf(Path f) {
+        byte[] head = new byte[8192];
+        int n = 0;
+        try (java.io.InputStream in = Files.newInputStream(f, LinkOption.NOFOLLOW_LINKS)) {
+            n = in.readNBytes(head, 0, head.length);
+        } catch (IOException e) {
+            return "";
+        }
+        for (String line : new String(head, 0, n, StandardCharsets.UTF_8).split("[\\r\\n]+")) {
+            String clean = line.replaceAll("\\p{Cntrl}", "").strip();
+            if (!clean.isEmpty()) {
+                return clean.length() > 300 ? clean.substring(0, 300) : clean;
+            }
+        }
+        return "";
     }
 
     /**
@@ -216,8 +243,9 @@ final class SceneGrading {
                         : renders.timedOut() ? GradingStatus.message("the grader's render JVM was stopped by its wall-clock"
                                 + " guard before this scene was rendered, although the renders' limit is in the student's"
                                 + " CPU time: the machine or the grader was too slow")
-                        : GradingStatus.message("the grader's render JVM ended early, before this scene was rendered:"
-                                + " it runs no code of the student's (a crash, or the machine's memory)");
+                        : GradingStatus.message("the grader's JVM that renders the scenes ended early, before this scene"
+                                + " was rendered, and it runs no code of the student's: "
+                                + (renders.ended().isEmpty() ? "a crash, or the machine's memory" : renders.ended()));
                 shown = new GradeReport.Images(null, refBytes, null, "");
             } else {
                 try {
