@@ -389,6 +389,13 @@ public final class ReleaseVerifier {
         out.add(Check.of("services files list only the starter's classes", unshippedProviders(starter, files), ""));
         out.add(Check.of("every page of docs/ that a file names or links is in the starter", unshippedDocs(starter, files),
                 ""));
+        List<String> fences = new ArrayList<>();
+        for (String rel : files) {
+            if (rel.endsWith(".md")) {
+                fences.addAll(MarkdownFences.unclosed(rel, Files.readString(starter.resolve(rel))));
+            }
+        }
+        out.add(Check.of("every Markdown page of the starter closes its code blocks", fences, ""));
 
         List<String> desc = new ArrayList<>();
         try {
