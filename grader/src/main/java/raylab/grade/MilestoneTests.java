@@ -126,7 +126,7 @@ final class MilestoneTests {
                 } catch (NumberFormatException e) {
                     ms = 0; // stopped before the renders ended
                 }
-                // On this path the test JVM renders the scenes: why it did not finish is the launcher's problem.
+                // On this path the test JVM renders the scenes: the launcher's account of its early end.
                 renders = new SceneGrading.Renders(SceneGrading.read(pngs), !o.finished() && o.timedOut(), false, ms,
                         o.finished() || o.timedOut() ? "" : o.problem());
                 Path times = dir.resolve("render").resolve("times.txt");

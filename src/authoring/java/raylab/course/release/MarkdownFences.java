@@ -6,11 +6,13 @@ import java.util.regex.Matcher;
 import java.util.regex.Pattern;
 
 /**
- * Code blocks of a Markdown page that never close, as CommonMark (and so GitHub) reads them: a
- * fence of three or more backticks or tildes, indented at most three spaces, opens a block that
- * only a line of the same character, at least as long and followed by nothing but spaces, closes.
- * A closing fence with text after it ("``` At the start ...") is a line of code, so the rest of
- * the page renders as code: the starter's README once lost its milestone table that way.
+ * Code blocks of a Markdown page that do not end where they seem to, as CommonMark (and so GitHub)
+ * reads them: a fence of three or more backticks or tildes, indented at most three spaces, opens a
+ * block that only a line of the same character, at least as long and followed by nothing but
+ * spaces or tabs, closes (CommonMark's "Fenced code blocks"; GitHub's parser, cmark-gfm, scans a
+ * closing fence as {@code [`]{3,} / [ \t]*[\r\n]} in {@code src/scanners.re}). A closing fence
+ * with text after it ("``` At the start ...") is a line of code, so the page renders as code up to
+ * the next fence: the starter's README once showed its milestone table as code that way.
  */
 final class MarkdownFences {
     private static final Pattern OPEN = Pattern.compile("^ {0,3}(`{3,}|~{3,})(.*)$");
